@@ -1,0 +1,129 @@
+#include "compile.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace brume {
+
+using shd::BRUME_HUGE;
+
+static void unbounded(shd::VolumeData& d) {
+    d.worldMin = glm::vec4(-BRUME_HUGE, -BRUME_HUGE, -BRUME_HUGE, 0.0f);
+    d.worldMax = glm::vec4(BRUME_HUGE, BRUME_HUGE, BRUME_HUGE, 0.0f);
+}
+
+static void boundsOfUnitCube(shd::VolumeData& d, const glm::mat4& worldFromLocal) {
+    glm::vec3 lo(BRUME_HUGE), hi(-BRUME_HUGE);
+    for (int i = 0; i < 8; ++i) {
+        glm::vec3 c((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f);
+        glm::vec3 w = glm::vec3(worldFromLocal * glm::vec4(c, 1.0f));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+    d.worldMin = glm::vec4(lo, 0.0f);
+    d.worldMax = glm::vec4(hi, 0.0f);
+}
+
+shd::VolumeData compileVolume(const Volume& v) {
+    shd::VolumeData d{};
+    d.localFromWorld = glm::mat4(1.0f);
+    d.sigmaS_g = glm::vec4(v.medium.scattering, v.medium.phase_g);
+    d.sigmaA = glm::vec4(v.medium.absorption, 0.0f);
+    d.emission = glm::vec4(v.medium.emission, 0.0f);
+    unbounded(d);
+    switch (v.type) {
+        case VolumeType::Box:
+            d.kind.x = shd::VOLUME_BOX;
+            d.localFromWorld = v.transform.localFromWorld();
+            d.params.x = v.edge_fade;
+            boundsOfUnitCube(d, v.transform.worldFromLocal());
+            break;
+        case VolumeType::Height:
+            d.params.x = v.base_height;
+            if (v.profile == HeightProfile::Exponential) {
+                d.kind.x = shd::VOLUME_HEIGHT_EXPONENTIAL;
+                d.params.y = v.falloff;
+                // Above base + 40/falloff the density is below e^-40 (4e-18): nothing visible.
+                if (v.falloff > 0.0f) d.worldMax.y = v.base_height + 40.0f / v.falloff;
+            } else {
+                d.kind.x = shd::VOLUME_HEIGHT_LINEAR;
+                d.params.y = v.transition_height;
+                d.worldMax.y = v.base_height + v.transition_height;
+            }
+            break;
+        case VolumeType::Depth:
+            d.kind.x = shd::VOLUME_DEPTH;
+            d.params.x = v.visibility_distance;
+            d.params.y = v.start_distance;
+            break;
+        case VolumeType::Vdb:
+            d.kind.x = shd::VOLUME_VDB;
+            d.params.x = v.density_scale;
+            d.localFromWorld = v.transform.localFromWorld();
+            break;
+    }
+    return d;
+}
+
+shd::LightData compileLight(const Light& l) {
+    shd::LightData d{};
+    const float len = glm::length(l.direction);
+    const glm::vec3 dir = len > 0.0f ? l.direction / len : glm::vec3(0, -1, 0);
+    d.positionRange = glm::vec4(l.position, l.range);
+    d.direction = glm::vec4(dir, 0.0f);
+    d.intensity = glm::vec4(l.color * l.intensity, l.fog_scale);
+    d.spot = glm::vec4(std::cos(glm::radians(l.outer_deg)), std::cos(glm::radians(l.inner_deg)), 0.0f, 0.0f);
+    switch (l.type) {
+        case LightType::Directional: d.kind.x = shd::LIGHT_DIRECTIONAL; break;
+        case LightType::Point: d.kind.x = shd::LIGHT_POINT; break;
+        case LightType::Spot: d.kind.x = shd::LIGHT_SPOT; break;
+    }
+    d.kind.y = l.shadows ? 1 : 0;
+    return d;
+}
+
+CompiledScene compileScene(const Scene& scene) {
+    CompiledScene cs;
+    cs.ambient = scene.ambient;
+    cs.cameraPosition = scene.camera.position;
+    for (const Volume& v : scene.volumes) cs.volumes.push_back(compileVolume(v));
+    for (const Light& l : scene.lights) cs.lights.push_back(compileLight(l));
+    return cs;
+}
+
+shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
+    shd::MediaSample m = shd::emptyMedia();
+    for (const shd::VolumeData& v : cs.volumes) {
+        if (!shd::insideBounds(v, p)) continue;
+        m = shd::addMedium(m, v, shd::analyticDensity(v, p, cs.cameraPosition));
+    }
+    return m;
+}
+
+shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,
+                                     const FroxelSettings& fs, glm::vec3 jitter) {
+    shd::FrameUniforms f{};
+    const Camera& c = scene.camera;
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    const float tanY = std::tan(glm::radians(c.fov_y_deg) * 0.5f);
+    f.viewFromWorld = c.viewFromWorld();
+    f.worldFromView = glm::inverse(f.viewFromWorld);
+    // Vulkan clip space: depth in [0,1], y down in framebuffer coordinates.
+    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(c.fov_y_deg), aspect, c.near, c.far);
+    proj[1][1] *= -1.0f;
+    f.clipFromView = proj;
+    f.clipFromWorld = proj * f.viewFromWorld;
+    f.cameraPosition = glm::vec4(c.position, 0.0f);
+    f.ambient = glm::vec4(scene.ambient, 0.0f);
+    f.projection = glm::vec4(tanY * aspect, tanY, c.near, c.far);
+    f.froxelRange = glm::vec4(fs.near, fs.far, fs.distribution, 0.0f);
+    const glm::ivec3 dims = froxelGridDims(width, height, fs);
+    f.froxelDims = glm::ivec4(dims, fs.tile_px);
+    f.counts = glm::ivec4(width, height, static_cast<int>(cs.volumes.size()), static_cast<int>(cs.lights.size()));
+    f.jitter = glm::vec4(jitter, 0.0f);
+    return f;
+}
+
+}  // namespace brume

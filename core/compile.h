@@ -1,0 +1,33 @@
+// Scene -> the shared per-volume and per-light records (shaders/shared/types.h) that the CPU froxel
+// renderer, the CPU reference and the GPU all evaluate with the same shared functions.
+#pragma once
+
+#include <vector>
+
+#include "../shaders/shared/brume.h"
+#include "quality.h"
+#include "scene.h"
+
+namespace brume {
+
+struct CompiledScene {
+    std::vector<shd::VolumeData> volumes;  // analytic volumes (vdb volumes are kept, kind VOLUME_VDB)
+    std::vector<shd::LightData> lights;
+    glm::vec3 ambient{0.0f};
+    glm::vec3 cameraPosition{0.0f};
+};
+
+shd::VolumeData compileVolume(const Volume& v);
+shd::LightData compileLight(const Light& l);
+CompiledScene compileScene(const Scene& scene);
+
+// Sum of every volume's media at a world position (analytic volumes; VDB volumes contribute 0
+// until the VDB importer provides samplers).
+shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 worldPos);
+
+// Per-frame constants for an image of width x height with the given froxel settings.
+// jitter is the sample position inside each froxel, (0.5, 0.5, 0.5) = centres.
+shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,
+                                     const FroxelSettings& fs, glm::vec3 jitter = glm::vec3(0.5f));
+
+}  // namespace brume

@@ -1,0 +1,56 @@
+// The two CPU renderers. Both take a Scene and return linear radiance.
+//   renderReference: per-pixel ray marching, independent of froxels: the ground truth.
+//   renderFroxelCpu: the froxel algorithm (voxelize, light, integrate, composite): the GPU's oracle.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "compile.h"
+#include "image.h"
+#include "quality.h"
+#include "scene.h"
+
+namespace brume {
+
+// fraction in [0, 1]; called from worker threads (must be thread-safe), at most ~100 times.
+using ProgressFn = std::function<void(float fraction)>;
+
+struct RenderRequest {
+    int width = 640;
+    int height = 360;
+    Quality quality = Quality::High;
+    int frames = 1;        // froxel renderer: frames of temporal accumulation (the temporal issue)
+    int threads = 0;       // 0 = every core
+    ProgressFn progress;   // optional
+};
+
+// Request from the scene's own render block.
+RenderRequest requestFromScene(const Scene& scene);
+
+Image renderReference(const Scene& scene, const RenderRequest& request);
+
+// Intermediate volumes of the froxel renderer, kept for GPU-vs-CPU comparisons and debug views.
+// Each volume is dims.x * dims.y * dims.z entries, index = (z * dims.y + y) * dims.x + x.
+struct FroxelVolumes {
+    glm::ivec3 dims{0};
+    shd::FrameUniforms frame{};
+    std::vector<glm::vec4> mediaScatteringG;         // voxelize: rgb sigma_s [1/m], a: phase g
+    std::vector<glm::vec4> mediaExtinction;          // voxelize: rgb sigma_t [1/m], a: unused
+    std::vector<glm::vec4> mediaEmission;            // voxelize: rgb emitted radiance per meter, a: unused
+    std::vector<glm::vec4> source;                   // light: rgb source S = in-scattered + emitted [radiance/m]
+    std::vector<glm::vec4> integratedScattering;     // integrate: rgb scattering, camera to the slice's far side
+    std::vector<glm::vec4> integratedTransmittance;  // integrate: rgb transmittance, likewise
+    size_t litFroxels = 0;      // froxels with sigma_t > 0 (lit)
+    size_t skippedFroxels = 0;  // froxels with sigma_t = 0 (lighting skipped)
+};
+
+struct FroxelResult {
+    Image image;
+    FroxelVolumes volumes;
+};
+
+FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request);
+
+}  // namespace brume

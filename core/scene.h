@@ -1,0 +1,157 @@
+// Brume's scene model: what a scene file holds, in memory. Defaults come from core/settings.h.
+// Right-handed, Y up, meters. io/scene_json.* reads and writes it; core/compile.* turns it into
+// the shared VolumeData/LightData arrays that both renderers evaluate.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "settings.h"
+
+namespace brume {
+
+constexpr glm::vec3 vec3Default(const Setting& s) {
+    return {static_cast<float>(s.def[0]), static_cast<float>(s.def[1]), static_cast<float>(s.def[2])};
+}
+
+// world = T * R * S, R = Rz * Ry * Rx (rotation about world X first, then Y, then Z).
+struct Transform {
+    glm::vec3 translation = vec3Default(settings::transform_translation);
+    glm::vec3 rotation_deg = vec3Default(settings::transform_rotation);
+    glm::vec3 scale = vec3Default(settings::transform_scale);
+
+    glm::mat4 worldFromLocal() const;
+    glm::mat4 localFromWorld() const;
+    bool operator==(const Transform&) const = default;
+};
+
+struct Camera {
+    glm::vec3 position = vec3Default(settings::camera_position);
+    glm::vec3 target = vec3Default(settings::camera_target);
+    glm::vec3 up = vec3Default(settings::camera_up);
+    float fov_y_deg = settings::camera_fov_y.f();
+    float near = settings::camera_near.f();
+    float far = settings::camera_far.f();
+
+    glm::mat4 viewFromWorld() const;
+    bool operator==(const Camera&) const = default;
+};
+
+enum class Quality { Low, Medium, High, Ultra };
+
+struct RenderBlock {
+    int width = settings::render_width.i();
+    int height = settings::render_height.i();
+    Quality quality = static_cast<Quality>(settings::render_quality.i());
+    bool operator==(const RenderBlock&) const = default;
+};
+
+// Each present key overrides the quality preset's value.
+struct FroxelOverrides {
+    std::optional<int> tile_px;
+    std::optional<int> slices;
+    std::optional<float> near;
+    std::optional<float> far;
+    std::optional<float> distribution;
+    bool operator==(const FroxelOverrides&) const = default;
+};
+
+struct Temporal {
+    bool enabled = settings::temporal_enabled.b();
+    float history_weight = settings::temporal_history_weight.f();
+    bool operator==(const Temporal&) const = default;
+};
+
+enum class LightType { Directional, Point, Spot };
+
+struct Light {
+    LightType type = LightType::Directional;
+    std::string name;
+    glm::vec3 direction = vec3Default(settings::light_direction);  // normalized on load
+    glm::vec3 position = vec3Default(settings::light_position);
+    glm::vec3 color = vec3Default(settings::light_color);
+    float intensity = settings::light_intensity_directional.f();
+    float range = settings::light_range.f();
+    bool shadows = settings::light_shadows_directional.b();
+    float fog_scale = settings::light_fog_scale.f();
+    float inner_deg = settings::light_inner_deg.f();
+    float outer_deg = settings::light_outer_deg.f();
+    bool operator==(const Light&) const = default;
+};
+
+// A light of the given type with that type's defaults.
+Light makeLight(LightType type);
+
+struct Medium {
+    glm::vec3 scattering = vec3Default(settings::medium_scattering);
+    glm::vec3 absorption = vec3Default(settings::medium_absorption);
+    glm::vec3 emission = vec3Default(settings::medium_emission);
+    float phase_g = settings::medium_phase_g.f();
+    bool operator==(const Medium&) const = default;
+};
+
+enum class VolumeType { Box, Height, Depth, Vdb };
+enum class HeightProfile { Exponential, Linear };
+
+// One struct for every volume type; only the fields of its type are read and written.
+struct Volume {
+    VolumeType type = VolumeType::Box;
+    std::string name;
+    Transform transform;                                       // box, vdb
+    float edge_fade = settings::volume_edge_fade.f();          // box
+    float base_height = settings::volume_base_height.f();      // height
+    HeightProfile profile = HeightProfile::Exponential;        // height
+    float falloff = settings::volume_falloff.f();              // height, exponential
+    float transition_height = settings::volume_transition_height.f();  // height, linear
+    float visibility_distance = settings::volume_visibility_distance.f();  // depth
+    float start_distance = settings::volume_start_distance.f();            // depth
+    std::string file;                                          // vdb, as written in the scene
+    std::string grid = "density";                              // vdb
+    float density_scale = settings::volume_density_scale.f();  // vdb
+    Medium medium;
+    bool operator==(const Volume&) const = default;
+};
+
+enum class GeometryType { Plane, Box, Sphere };
+
+struct Geometry {
+    GeometryType type = GeometryType::Plane;
+    std::string name;
+    float height = settings::geometry_height.f();        // plane
+    Transform transform;                                 // box: unit cube [-0.5,0.5]^3
+    glm::vec3 center = vec3Default(settings::geometry_center);  // sphere
+    float radius = settings::geometry_radius.f();        // sphere
+    glm::vec3 albedo = vec3Default(settings::geometry_albedo);
+    glm::vec3 emission = vec3Default(settings::geometry_emission);
+    bool operator==(const Geometry&) const = default;
+};
+
+struct Scene {
+    int version = 1;
+    Camera camera;
+    RenderBlock render;
+    FroxelOverrides froxels;
+    Temporal temporal;
+    glm::vec3 ambient = vec3Default(settings::ambient);
+    std::vector<Light> lights;
+    std::vector<Volume> volumes;
+    std::vector<Geometry> geometry;
+    // Folder of the scene file, for resolving relative paths (vdb files); not serialized.
+    std::string baseDir;
+    bool operator==(const Scene& o) const {
+        return version == o.version && camera == o.camera && render == o.render && froxels == o.froxels &&
+               temporal == o.temporal && ambient == o.ambient && lights == o.lights && volumes == o.volumes &&
+               geometry == o.geometry;
+    }
+};
+
+const char* toString(Quality q);
+const char* toString(LightType t);
+const char* toString(VolumeType t);
+const char* toString(HeightProfile p);
+const char* toString(GeometryType t);
+
+}  // namespace brume

@@ -1,0 +1,121 @@
+// Every user-facing setting of the scene format, written once: JSON path, unit, default, range and
+// help text. The scene parser validates against it, Scene's default member values come from it, the
+// editor builds its widgets from it and `brume settings --markdown` prints the docs' table from it.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string_view>
+
+namespace brume {
+
+enum class SettingKind { Number, Integer, Vec3, Bool, Choice, String };
+
+struct Setting {
+    std::string_view path;     // JSON path; "[]" is any element, "[type=x]" only elements of that type
+    SettingKind kind;
+    std::string_view unit;     // "" when unitless
+    double min;                // inclusive range (each component of a Vec3)
+    double max;
+    std::array<double, 3> def; // default (components beyond the kind's count are ignored)
+    std::string_view choices;  // Choice: alternatives separated by '|', first is not special
+    std::string_view help;
+
+    constexpr double value() const { return def[0]; }
+    constexpr float f() const { return static_cast<float>(def[0]); }
+    constexpr int i() const { return static_cast<int>(def[0]); }
+    constexpr bool b() const { return def[0] != 0.0; }
+};
+
+namespace settings {
+
+using K = SettingKind;
+inline constexpr double kBig = 1.0e6;     // positions and distances
+inline constexpr double kCoef = 1.0e9;    // medium coefficients [1/m]
+
+// clang-format off
+inline constexpr Setting camera_position  {"camera.position", K::Vec3, "m", -kBig, kBig, {0, 1.5, 6}, "", "Camera position in world space."};
+inline constexpr Setting camera_target    {"camera.target", K::Vec3, "m", -kBig, kBig, {0, 0, 0}, "", "Point the camera looks at; must differ from the position."};
+inline constexpr Setting camera_up        {"camera.up", K::Vec3, "", -1, 1, {0, 1, 0}, "", "Up direction; must not be parallel to the view direction."};
+inline constexpr Setting camera_fov_y     {"camera.fov_y_deg", K::Number, "deg", 1, 179, {60}, "", "Vertical field of view."};
+inline constexpr Setting camera_near      {"camera.near", K::Number, "m", 1e-4, 1e4, {0.1}, "", "Near clip distance (view depth)."};
+inline constexpr Setting camera_far       {"camera.far", K::Number, "m", 1e-3, 1e7, {100}, "", "Far clip distance (view depth); fog and geometry end here, beyond is the ambient sky. Must exceed near."};
+
+inline constexpr Setting render_width     {"render.width", K::Integer, "px", 1, 16384, {640}, "", "Image width."};
+inline constexpr Setting render_height    {"render.height", K::Integer, "px", 1, 16384, {360}, "", "Image height."};
+inline constexpr Setting render_quality   {"render.quality", K::Choice, "", 0, 0, {2}, "low|medium|high|ultra", "Froxel quality preset (see docs/quality.md)."};
+
+inline constexpr Setting froxels_tile_px  {"froxels.tile_px", K::Integer, "px", 1, 64, {8}, "", "Screen tile covered by one froxel column (overrides the preset)."};
+inline constexpr Setting froxels_slices   {"froxels.slices", K::Integer, "", 1, 1024, {64}, "", "Number of depth slices (overrides the preset)."};
+inline constexpr Setting froxels_near     {"froxels.near", K::Number, "m", 1e-4, 1e6, {0.1}, "", "View depth where slice 0 begins (overrides the preset; default: camera near)."};
+inline constexpr Setting froxels_far      {"froxels.far", K::Number, "m", 1e-3, 1e7, {64}, "", "View depth where the last slice ends (overrides the preset; clamped to camera far)."};
+inline constexpr Setting froxels_distribution {"froxels.distribution", K::Number, "", 0.1, 8, {2}, "", "Slice distribution exponent k: z(t) = near + (far - near) t^k; 1 = even, larger = more slices near the camera."};
+
+inline constexpr Setting temporal_enabled {"temporal.enabled", K::Bool, "", 0, 1, {1}, "", "Blend each frame with the reprojected previous one."};
+inline constexpr Setting temporal_history_weight {"temporal.history_weight", K::Number, "", 0, 0.99, {0.9}, "", "Weight of the history in the blend."};
+
+inline constexpr Setting ambient          {"ambient", K::Vec3, "W/(m^2 sr)", 0, kBig, {0, 0, 0}, "", "Constant radiance arriving from every direction (sky); lights fog and surfaces unshadowed."};
+
+inline constexpr Setting light_type       {"lights[].type", K::Choice, "", 0, 0, {0}, "directional|point|spot", "Kind of light."};
+inline constexpr Setting light_name       {"lights[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
+inline constexpr Setting light_direction  {"lights[].direction", K::Vec3, "", -1, 1, {0.3, -1, 0.2}, "", "Direction the light travels (directional, spot); normalized on load, must not be zero."};
+inline constexpr Setting light_position   {"lights[].position", K::Vec3, "m", -kBig, kBig, {0, 2, 0}, "", "Light position (point, spot)."};
+inline constexpr Setting light_color      {"lights[].color", K::Vec3, "", 0, kBig, {1, 1, 1}, "", "Color multiplier of the intensity."};
+inline constexpr Setting light_intensity_directional {"lights[type=directional].intensity", K::Number, "W/m^2", 0, kBig, {3}, "", "Irradiance on a surface facing the light."};
+inline constexpr Setting light_intensity_local {"lights[type=point|spot].intensity", K::Number, "W/sr", 0, kBig, {20}, "", "Radiant intensity on the axis; falls off with the inverse square of distance."};
+inline constexpr Setting light_range      {"lights[].range", K::Number, "m", 0, kBig, {0}, "", "Distance where a smooth window (1 - (d/range)^4)^2 reaches zero; 0 = no window (point, spot)."};
+inline constexpr Setting light_shadows_directional {"lights[type=directional].shadows", K::Bool, "", 0, 1, {1}, "", "Casts shadows."};
+inline constexpr Setting light_shadows_local {"lights[type=point|spot].shadows", K::Bool, "", 0, 1, {0}, "", "Casts shadows."};
+inline constexpr Setting light_fog_scale  {"lights[].fog_scale", K::Number, "", 0, 100, {1}, "", "Multiplies the light's effect on fog only; 0 = does not light fog."};
+inline constexpr Setting light_inner_deg  {"lights[type=spot].inner_deg", K::Number, "deg", 0, 179, {20}, "", "Half-angle of full intensity; must not exceed outer_deg."};
+inline constexpr Setting light_outer_deg  {"lights[type=spot].outer_deg", K::Number, "deg", 0, 179, {30}, "", "Half-angle where the cone reaches zero (smoothstep on the cosine in between)."};
+
+inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb", "Kind of fog volume."};
+inline constexpr Setting volume_name      {"volumes[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
+inline constexpr Setting volume_edge_fade {"volumes[type=box].edge_fade", K::Number, "", 0, 1, {0.1}, "", "Fraction of the half-size over which density fades to 0 at the faces; 0 = hard edge."};
+inline constexpr Setting volume_base_height {"volumes[type=height].base_height", K::Number, "m", -kBig, kBig, {0}, "", "Height below which density is 1."};
+inline constexpr Setting volume_profile   {"volumes[type=height].profile", K::Choice, "", 0, 0, {0}, "exponential|linear", "Density profile above base_height."};
+inline constexpr Setting volume_falloff   {"volumes[type=height].falloff", K::Number, "1/m", 0, 1000, {0.5}, "", "Exponential profile: density exp(-falloff * (y - base_height))."};
+inline constexpr Setting volume_transition_height {"volumes[type=height].transition_height", K::Number, "m", 1e-3, kBig, {2}, "", "Linear profile: height above base_height where density reaches 0."};
+inline constexpr Setting volume_visibility_distance {"volumes[type=depth].visibility_distance", K::Number, "m", 1e-3, 1e7, {50}, "", "Distance over which density rises to 95% (1 - exp(-3))."};
+inline constexpr Setting volume_start_distance {"volumes[type=depth].start_distance", K::Number, "m", 0, 1e7, {0}, "", "Distance from the camera where depth fog begins."};
+inline constexpr Setting volume_file      {"volumes[type=vdb].file", K::String, "", 0, 0, {0}, "", "OpenVDB file, relative to the scene file's folder. Required."};
+inline constexpr Setting volume_grid      {"volumes[type=vdb].grid", K::String, "", 0, 0, {0}, "", "Grid name in the file (default: density)."};
+inline constexpr Setting volume_density_scale {"volumes[type=vdb].density_scale", K::Number, "", 0, kBig, {1}, "", "Multiplies the grid's values."};
+
+inline constexpr Setting transform_translation {"*.transform.translation", K::Vec3, "m", -kBig, kBig, {0, 0, 0}, "", "Translation."};
+inline constexpr Setting transform_rotation {"*.transform.rotation_deg", K::Vec3, "deg", -36000, 36000, {0, 0, 0}, "", "Rotation about world X, then Y, then Z."};
+inline constexpr Setting transform_scale  {"*.transform.scale", K::Vec3, "", 1e-4, kBig, {1, 1, 1}, "", "Scale along the local axes (box volumes and geometry: the unit cube's edge lengths)."};
+
+inline constexpr Setting medium_scattering {"volumes[].medium.scattering", K::Vec3, "1/m", 0, kCoef, {0.1, 0.1, 0.1}, "", "Scattering coefficient sigma_s at density 1."};
+inline constexpr Setting medium_absorption {"volumes[].medium.absorption", K::Vec3, "1/m", 0, kCoef, {0.01, 0.01, 0.01}, "", "Absorption coefficient sigma_a at density 1."};
+inline constexpr Setting medium_emission  {"volumes[].medium.emission", K::Vec3, "W/(m^2 sr m)", 0, kBig, {0, 0, 0}, "", "Radiance emitted per meter of path at density 1."};
+inline constexpr Setting medium_phase_g   {"volumes[].medium.phase_g", K::Number, "", -1, 1, {0.2}, "", "Henyey-Greenstein anisotropy: > 0 forward, < 0 backward; evaluated with |g| <= 0.999."};
+
+inline constexpr Setting geometry_type    {"geometry[].type", K::Choice, "", 0, 0, {0}, "plane|box|sphere", "Kind of surface."};
+inline constexpr Setting geometry_name    {"geometry[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
+inline constexpr Setting geometry_height  {"geometry[type=plane].height", K::Number, "m", -kBig, kBig, {0}, "", "Height of the horizontal plane (normal +Y)."};
+inline constexpr Setting geometry_center  {"geometry[type=sphere].center", K::Vec3, "m", -kBig, kBig, {0, 1, 0}, "", "Sphere centre."};
+inline constexpr Setting geometry_radius  {"geometry[type=sphere].radius", K::Number, "m", 1e-4, kBig, {1}, "", "Sphere radius."};
+inline constexpr Setting geometry_albedo  {"geometry[].albedo", K::Vec3, "", 0, 1, {0.5, 0.5, 0.5}, "", "Lambertian reflectance."};
+inline constexpr Setting geometry_emission {"geometry[].emission", K::Vec3, "W/(m^2 sr)", 0, kBig, {0, 0, 0}, "", "Radiance the surface emits (light panels, backdrops); it lights nothing else."};
+// clang-format on
+
+inline constexpr std::array kAll = {
+    &camera_position, &camera_target, &camera_up, &camera_fov_y, &camera_near, &camera_far,
+    &render_width, &render_height, &render_quality,
+    &froxels_tile_px, &froxels_slices, &froxels_near, &froxels_far, &froxels_distribution,
+    &temporal_enabled, &temporal_history_weight, &ambient,
+    &light_type, &light_name, &light_direction, &light_position, &light_color,
+    &light_intensity_directional, &light_intensity_local, &light_range, &light_shadows_directional,
+    &light_shadows_local, &light_fog_scale, &light_inner_deg, &light_outer_deg,
+    &volume_type, &volume_name, &volume_edge_fade, &volume_base_height, &volume_profile, &volume_falloff,
+    &volume_transition_height, &volume_visibility_distance, &volume_start_distance, &volume_file,
+    &volume_grid, &volume_density_scale, &transform_translation, &transform_rotation, &transform_scale,
+    &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
+    &geometry_type, &geometry_name, &geometry_height, &geometry_center, &geometry_radius, &geometry_albedo,
+    &geometry_emission,
+};
+
+}  // namespace settings
+}  // namespace brume

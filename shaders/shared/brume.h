@@ -1,0 +1,11 @@
+// Everything the CPU and the GPU share, in include order.
+#ifndef BRUME_SHARED_H
+#define BRUME_SHARED_H
+#include "common.h"
+#include "types.h"
+#include "froxel.h"
+#include "media.h"
+#include "lighting.h"
+#include "integrate.h"
+#include "tonemap.h"
+#endif

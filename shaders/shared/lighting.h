@@ -1,0 +1,81 @@
+// Henyey-Greenstein phase, light evaluation and Lambert surfaces.
+#ifndef BRUME_SHARED_LIGHTING_H
+#define BRUME_SHARED_LIGHTING_H
+
+#include "types.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// |g| is clamped to this so that the lobe's peak, (1+g)/(4 pi (1-g)^2), stays finite in float.
+BRUME_CONST float PHASE_G_LIMIT = 0.999f;
+// Point and spot lights behave as spheres of this radius for the inverse-square law [m]: no
+// infinity at the light's position.
+BRUME_CONST float LIGHT_MIN_DISTANCE = 0.01f;
+
+// Henyey-Greenstein phase function [1/sr]. cosTheta is the cosine between the direction the light
+// travels and the direction it is scattered into; g > 0 scatters forward. Integrates to 1 over the
+// sphere.
+float hgPhase(float g, float cosTheta) {
+    float gc = clamp(g, -PHASE_G_LIMIT, PHASE_G_LIMIT);
+    float denom = max(1.0f + gc * gc - 2.0f * gc * cosTheta, 1.0e-12f);
+    return BRUME_INV_4PI * (1.0f - gc * gc) / (denom * sqrt(denom));
+}
+
+// Smooth range window: 1 at the light, 0 at `range` and beyond, (1 - (r/range)^4)^2.
+float rangeWindow(float dist, float range) {
+    if (range <= 0.0f) return 1.0f;
+    float x = dist / range;
+    float x2 = x * x;
+    float w = clamp(1.0f - x2 * x2, 0.0f, 1.0f);
+    return w * w;
+}
+
+// Spot cone: 1 inside the inner angle, 0 outside the outer, Hermite smoothstep on the cosine between.
+float spotCone(float cosAngle, float cosOuter, float cosInner) {
+    if (cosInner - cosOuter < 1.0e-6f) return cosAngle >= cosOuter ? 1.0f : 0.0f;
+    return smoothstep(cosOuter, cosInner, cosAngle);
+}
+
+struct LightSample {
+    vec3 irradiance;   // W/m^2 arriving at the point on a surface facing the light (no shadowing)
+    vec3 toLight;      // unit direction from the point toward the light
+    float distance;    // distance to the light [m] (BRUME_HUGE for directional)
+};
+
+LightSample evalLight(LightData l, vec3 p) {
+    LightSample s;
+    if (l.kind.x == LIGHT_DIRECTIONAL) {
+        s.toLight = -vec3(l.direction);
+        s.irradiance = vec3(l.intensity);
+        s.distance = BRUME_HUGE;
+        return s;
+    }
+    vec3 d = vec3(l.positionRange) - p;
+    float dist = length(d);
+    s.toLight = dist > 0.0f ? d / dist : vec3(0.0f, 1.0f, 0.0f);
+    s.distance = dist;
+    float r = max(dist, LIGHT_MIN_DISTANCE);
+    float atten = rangeWindow(dist, l.positionRange.w) / (r * r);
+    if (l.kind.x == LIGHT_SPOT) {
+        atten *= spotCone(dot(vec3(l.direction), -s.toLight), l.spot.x, l.spot.y);
+    }
+    s.irradiance = vec3(l.intensity) * atten;
+    return s;
+}
+
+// Radiance scattered toward the viewer at p by one light, per unit sigma_s (multiply by sigma_s and
+// the visibility). viewDir is the unit direction from the camera to p.
+vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, float g) {
+    // The light travels along -toLight; scattered light leaves toward the camera, along -viewDir.
+    float cosTheta = dot(-s.toLight, -viewDir);
+    return s.irradiance * (hgPhase(g, cosTheta) * l.intensity.w);
+}
+
+// Lambertian surface: radiance = albedo / pi * irradiance * cos.
+vec3 lambert(vec3 albedo, vec3 normal, LightSample s) {
+    return albedo * (1.0f / BRUME_PI) * s.irradiance * max(dot(normal, s.toLight), 0.0f);
+}
+
+BRUME_NAMESPACE_END
+
+#endif

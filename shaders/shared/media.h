@@ -1,0 +1,85 @@
+// Density of every analytic volume type and the accumulation of overlapping media.
+// Scattering, absorption and emission add; the phase g is the mean of the volumes' g weighted by
+// their scattering at the point (density x mean sigma_s), which is exact for the first moment of a
+// mixture of Henyey-Greenstein lobes.
+#ifndef BRUME_SHARED_MEDIA_H
+#define BRUME_SHARED_MEDIA_H
+
+#include "types.h"
+
+BRUME_NAMESPACE_BEGIN
+
+float boxDensity(VolumeData v, vec3 worldPos) {
+    vec3 q = vec3(v.localFromWorld * vec4(worldPos, 1.0f));
+    float d = max(abs(q.x), max(abs(q.y), abs(q.z))) * 2.0f;
+    if (d >= 1.0f) return 0.0f;
+    float fade = v.params.x;
+    if (fade <= 0.0f) return 1.0f;
+    return 1.0f - smoothstep(1.0f - fade, 1.0f, d);
+}
+
+float heightExponentialDensity(VolumeData v, vec3 worldPos) {
+    return exp(-v.params.y * max(worldPos.y - v.params.x, 0.0f));
+}
+
+float heightLinearDensity(VolumeData v, vec3 worldPos) {
+    return clamp(1.0f - max(worldPos.y - v.params.x, 0.0f) / v.params.y, 0.0f, 1.0f);
+}
+
+float depthDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
+    float r = length(worldPos - cameraPos);
+    if (r < v.params.y) return 0.0f;
+    return 1.0f - exp(-3.0f * (r - v.params.y) / v.params.x);
+}
+
+bool insideBounds(VolumeData v, vec3 p) {
+    return p.x >= v.worldMin.x && p.y >= v.worldMin.y && p.z >= v.worldMin.z &&
+           p.x <= v.worldMax.x && p.y <= v.worldMax.y && p.z <= v.worldMax.z;
+}
+
+// Density of an analytic volume at a world position (VDB volumes are sampled by their own code and
+// report 0 here).
+float analyticDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
+    int k = v.kind.x;
+    if (k == VOLUME_BOX) return boxDensity(v, worldPos);
+    if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialDensity(v, worldPos);
+    if (k == VOLUME_HEIGHT_LINEAR) return heightLinearDensity(v, worldPos);
+    if (k == VOLUME_DEPTH) return depthDensity(v, worldPos, cameraPos);
+    return 0.0f;
+}
+
+struct MediaSample {
+    vec3 sigmaS;        // [1/m]
+    vec3 sigmaT;        // [1/m], sigma_s + sigma_a
+    vec3 emission;      // radiance per meter
+    float gWeighted;    // sum of weight * g
+    float gWeight;      // sum of weight (density x mean sigma_s)
+};
+
+MediaSample emptyMedia() {
+    MediaSample m;
+    m.sigmaS = vec3(0.0f);
+    m.sigmaT = vec3(0.0f);
+    m.emission = vec3(0.0f);
+    m.gWeighted = 0.0f;
+    m.gWeight = 0.0f;
+    return m;
+}
+
+MediaSample addMedium(MediaSample m, VolumeData v, float density) {
+    if (density <= 0.0f) return m;
+    vec3 s = vec3(v.sigmaS_g) * density;
+    m.sigmaS += s;
+    m.sigmaT += s + vec3(v.sigmaA) * density;
+    m.emission += vec3(v.emission) * density;
+    float w = (s.x + s.y + s.z) * (1.0f / 3.0f);
+    m.gWeighted += w * v.sigmaS_g.w;
+    m.gWeight += w;
+    return m;
+}
+
+float mediaPhaseG(MediaSample m) { return m.gWeight > 0.0f ? m.gWeighted / m.gWeight : 0.0f; }
+
+BRUME_NAMESPACE_END
+
+#endif

@@ -1,0 +1,74 @@
+// Structs and enums that cross the CPU/GPU boundary. Every member is a vec4, mat4 or ivec4 so that
+// std140 and std430 layouts are identical and match glm's C++ layout (tests/test_shared_layout.cpp
+// checks every offset and size).
+#ifndef BRUME_SHARED_TYPES_H
+#define BRUME_SHARED_TYPES_H
+
+#include "common.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// VolumeData.kind.x
+BRUME_CONST int VOLUME_BOX = 0;
+BRUME_CONST int VOLUME_HEIGHT_EXPONENTIAL = 1;
+BRUME_CONST int VOLUME_HEIGHT_LINEAR = 2;
+BRUME_CONST int VOLUME_DEPTH = 3;
+BRUME_CONST int VOLUME_VDB = 4;
+
+// LightData.kind.x
+BRUME_CONST int LIGHT_DIRECTIONAL = 0;
+BRUME_CONST int LIGHT_POINT = 1;
+BRUME_CONST int LIGHT_SPOT = 2;
+
+// Froxel compute passes run 4x4x4 invocations; dispatch counts use brumeDivRoundUp.
+BRUME_CONST int FROXEL_GROUP_X = 4;
+BRUME_CONST int FROXEL_GROUP_Y = 4;
+BRUME_CONST int FROXEL_GROUP_Z = 4;
+// The integration pass walks slices serially; one invocation per (x, y) column.
+BRUME_CONST int INTEGRATE_GROUP_X = 8;
+BRUME_CONST int INTEGRATE_GROUP_Y = 8;
+// Screen-space passes (composite).
+BRUME_CONST int SCREEN_GROUP_X = 8;
+BRUME_CONST int SCREEN_GROUP_Y = 8;
+
+// One fog volume, ready to evaluate. 176 bytes.
+struct VolumeData {
+    mat4 localFromWorld;  // box: world -> unit cube [-0.5,0.5]^3; vdb: world -> grid index space
+    vec4 sigmaS_g;        // rgb: scattering coefficient at density 1 [1/m]; a: phase g
+    vec4 sigmaA;          // rgb: absorption coefficient at density 1 [1/m]; a: unused
+    vec4 emission;        // rgb: emitted radiance per meter at density 1; a: unused
+    vec4 params;          // box: x edge_fade. height: x base_height, y falloff [1/m] or transition
+                          // height [m]. depth: x visibility_distance, y start_distance. vdb: x density_scale
+    ivec4 kind;           // x: VOLUME_*; yzw: unused
+    vec4 worldMin;        // xyz: world-space bounds of non-zero density (+-BRUME_HUGE when unbounded)
+    vec4 worldMax;
+};
+
+// One light, ready to evaluate. 80 bytes.
+struct LightData {
+    vec4 positionRange;   // xyz: world position [m] (point, spot); w: range [m], 0 = no window
+    vec4 direction;       // xyz: unit direction the light travels (directional, spot)
+    vec4 intensity;       // rgb: color * intensity (W/m^2 for directional, W/sr for point and spot);
+                          // a: fog_scale
+    vec4 spot;            // x: cos(outer angle); y: cos(inner angle)
+    ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1)
+};
+
+// Per-frame constants shared by every pass. 368 bytes.
+struct FrameUniforms {
+    mat4 viewFromWorld;
+    mat4 worldFromView;
+    mat4 clipFromView;
+    mat4 clipFromWorld;
+    vec4 cameraPosition;  // xyz: world position; w unused
+    vec4 ambient;         // rgb: radiance arriving from every direction; w unused
+    vec4 projection;      // x: tan(fov_y/2) * aspect; y: tan(fov_y/2); z: camera near; w: camera far
+    vec4 froxelRange;     // x: froxel near [m]; y: froxel far [m]; z: slice distribution exponent
+    ivec4 froxelDims;     // xyz: froxel grid size; w: tile size [px]
+    ivec4 counts;         // x: image width, y: image height [px]; z: volume count; w: light count
+    vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre)
+};
+
+BRUME_NAMESPACE_END
+
+#endif
