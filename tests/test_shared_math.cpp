@@ -1,1 +1,250 @@
+// Closed forms of the formulas in shaders/shared/ that both the CPU and the GPU evaluate:
+// phase normalisation and mean cosine, the stable slab integral at extreme sigma_t and d,
+// energy conservation, the light falloffs and the density profiles.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "core/compile.h"
+#include "shaders/shared/brume.h"
+
+using namespace brume;
+
+namespace {
+
+// Integral of f over [a, b] with panels geometrically graded toward a (a peak at a stays resolved).
+double integrateGraded(const std::function<double(double)>& f, double a, double b, int panels = 4000) {
+    const double len = b - a, first = 1e-10;
+    double sum = f(a) * first;  // the piece [a, a + first], where f is ~constant
+    double x0 = first;
+    const double ratio = std::pow(len / first, 1.0 / panels);
+    for (int i = 0; i < panels; ++i) {
+        const double x1 = x0 * ratio, xm = 0.5 * (x0 + x1);
+        sum += (x1 - x0) / 6.0 * (f(a + x0) + 4.0 * f(a + xm) + f(a + x1));  // Simpson
+        x0 = x1;
+    }
+    return sum;
+}
+
+// Integral over the sphere of h(cos) * p(cos), with dOmega = 2 pi dcos; split at 0 so both
+// poles are resolved whatever the sign of g.
+double sphereIntegral(float g, const std::function<double(double)>& h) {
+    auto p = [&](double c) { return 2.0 * M_PI * h(c) * shd::hgPhase(g, static_cast<float>(c)); };
+    const double fwd = integrateGraded([&](double x) { return p(1.0 - x); }, 0.0, 1.0);
+    const double back = integrateGraded([&](double x) { return p(-1.0 + x); }, 0.0, 1.0);
+    return fwd + back;
+}
+
+}  // namespace
+
+TEST(Phase, IntegratesToOneOverTheSphere) {
+    for (float g : {-1.0f, -0.99f, -0.7f, -0.3f, 0.0f, 0.3f, 0.7f, 0.9f, 0.99f, 1.0f}) {
+        const double integral = sphereIntegral(g, [](double) { return 1.0; });
+        EXPECT_NEAR(integral, 1.0, 2e-3) << "g = " << g;
+    }
+}
+
+TEST(Phase, MeanCosineIsG) {
+    for (float g : {-0.95f, -0.5f, 0.0f, 0.25f, 0.6f, 0.95f}) {
+        const double mean = sphereIntegral(g, [](double c) { return c; });
+        EXPECT_NEAR(mean, g, 2e-3) << "g = " << g;
+    }
+}
+
+TEST(Phase, FiniteAndPositiveAtExtremes) {
+    for (float g : {-1.0f, -0.999f, 0.999f, 1.0f, 5.0f, -5.0f}) {
+        for (float c : {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f}) {
+            const float p = shd::hgPhase(g, c);
+            EXPECT_TRUE(std::isfinite(p)) << g << " " << c;
+            EXPECT_GT(p, 0.0f);
+        }
+    }
+    EXPECT_NEAR(shd::hgPhase(0.0f, 0.3f), 1.0 / (4.0 * M_PI), 1e-7);
+}
+
+TEST(Slab, ExtremesStayFiniteAndBounded) {
+    const glm::vec3 source(2.0f, 1.0f, 0.5f);
+    for (double sigma : {0.0, 1e-12, 1e-6, 1.0, 1e6, 1e12}) {
+        for (double d : {0.0, 1e-6, 1.0, 1e6}) {
+            const glm::vec3 st(static_cast<float>(sigma));
+            const float df = static_cast<float>(d);
+            const glm::vec3 t = shd::slabTransmittance(st, df);
+            const glm::vec3 s = shd::slabScattering(source, st, df);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(t[c]) && std::isfinite(s[c])) << sigma << " " << d;
+                EXPECT_GE(t[c], 0.0f);
+                EXPECT_LE(t[c], 1.0f);
+                // Closed form in double: S (1 - e^{-sigma d}) / sigma, and S d at sigma = 0.
+                const double x = sigma * d;
+                const double exact = sigma > 0.0 ? source[c] * -std::expm1(-x) / sigma : source[c] * d;
+                EXPECT_NEAR(s[c], exact, 2e-6 * std::abs(exact) + 1e-30) << "sigma " << sigma << " d " << d;
+                EXPECT_NEAR(t[c], std::exp(-x), 1e-6);
+            }
+        }
+    }
+}
+
+TEST(Slab, TendsToSourceTimesLengthAsSigmaVanishes) {
+    const glm::vec3 source(3.0f);
+    for (float d : {1e-6f, 1.0f, 1e6f}) {
+        const glm::vec3 s = shd::slabScattering(source, glm::vec3(1e-12f), d);
+        EXPECT_NEAR(s.x / (3.0 * d), 1.0, 1e-5) << d;
+    }
+}
+
+TEST(Slab, PhiIsContinuousAcrossItsSeriesThreshold) {
+    // Both branches agree at the switch to float precision; phi is decreasing everywhere.
+    const float below = shd::slabPhi(0.01f - 1e-7f), above = shd::slabPhi(0.01f + 1e-7f);
+    EXPECT_NEAR(below, above, 2e-6f);
+    float prev = shd::slabPhi(0.0f);
+    EXPECT_EQ(prev, 1.0f);
+    for (float x = 1e-4f; x < 100.0f; x *= 1.3f) {
+        const float phi = shd::slabPhi(x);
+        EXPECT_LE(phi, prev + 1e-6f) << x;
+        EXPECT_NEAR(phi, -std::expm1(-static_cast<double>(x)) / x, 2e-6) << x;
+        prev = phi;
+    }
+}
+
+TEST(Slab, AccumulationOfSlicesEqualsOneSlab) {
+    // Homogeneous medium cut into n slabs integrates to the single-slab closed form.
+    const glm::vec3 sigmaT(0.3f, 0.7f, 1.1f), source(0.5f, 0.2f, 0.9f);
+    shd::Accumulated acc = shd::emptyAccumulated();
+    for (int i = 0; i < 64; ++i) acc = shd::accumulateSlab(acc, source, sigmaT, 10.0f / 64.0f);
+    const glm::vec3 t = shd::slabTransmittance(sigmaT, 10.0f), s = shd::slabScattering(source, sigmaT, 10.0f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(acc.transmittance[c], t[c], 1e-5f * t[c] + 1e-7f);
+        EXPECT_NEAR(acc.scattering[c], s[c], 1e-5f * s[c]);
+    }
+}
+
+TEST(Energy, AlbedoAtMostOneNeverCreatesLight) {
+    // A medium lit only by ambient radiance A, seen against a sky of radiance A: single scattering
+    // gives A T + albedo A (1 - T), which equals A at albedo 1 and is below A otherwise.
+    const float A = 2.5f;
+    for (float sigmaS : {0.0f, 1e-6f, 0.1f, 1.0f, 50.0f, 1e9f}) {
+        for (float albedo : {0.0f, 0.3f, 0.9f, 1.0f}) {
+            const float sigmaT = albedo > 0.0f ? sigmaS / albedo : sigmaS + 1.0f;
+            for (float d : {1e-3f, 1.0f, 100.0f, 1e6f}) {
+                shd::Accumulated acc = shd::emptyAccumulated();
+                acc = shd::accumulateSlab(acc, glm::vec3(sigmaS * A), glm::vec3(sigmaT), d);
+                const float out = shd::compositeFog(glm::vec3(A), acc).x;
+                EXPECT_LE(out, A * (1.0f + 1e-5f)) << sigmaS << " " << albedo << " " << d;
+                if (albedo == 1.0f) {
+                    EXPECT_NEAR(out, A, A * 1e-5f);
+                }
+            }
+        }
+    }
+}
+
+TEST(Lights, InverseSquareRangeWindowAndCone) {
+    Light point = makeLight(LightType::Point);
+    point.position = glm::vec3(0.0f);
+    point.intensity = 8.0f;
+    point.color = glm::vec3(1.0f);
+    const shd::LightData pd = compileLight(point);
+    EXPECT_NEAR(shd::evalLight(pd, glm::vec3(2, 0, 0)).irradiance.x, 8.0f / 4.0f, 1e-6f);
+    EXPECT_NEAR(shd::evalLight(pd, glm::vec3(0, 0, 4)).irradiance.x, 8.0f / 16.0f, 1e-6f);
+    const shd::LightSample at = shd::evalLight(pd, glm::vec3(0.0f));
+    EXPECT_TRUE(std::isfinite(at.irradiance.x));
+    EXPECT_NEAR(at.irradiance.x, 8.0f / (shd::LIGHT_MIN_DISTANCE * shd::LIGHT_MIN_DISTANCE), 1.0f);
+
+    EXPECT_EQ(shd::rangeWindow(0.0f, 5.0f), 1.0f);
+    EXPECT_EQ(shd::rangeWindow(5.0f, 5.0f), 0.0f);
+    EXPECT_EQ(shd::rangeWindow(7.0f, 5.0f), 0.0f);
+    EXPECT_EQ(shd::rangeWindow(1e6f, 0.0f), 1.0f);
+    float prev = 1.0f;
+    for (float r = 0.0f; r <= 5.0f; r += 0.25f) {
+        EXPECT_LE(shd::rangeWindow(r, 5.0f), prev);
+        prev = shd::rangeWindow(r, 5.0f);
+    }
+
+    Light spot = makeLight(LightType::Spot);
+    spot.position = glm::vec3(0, 10, 0);
+    spot.direction = glm::vec3(0, -1, 0);
+    spot.inner_deg = 20.0f;
+    spot.outer_deg = 30.0f;
+    spot.intensity = 100.0f;
+    const shd::LightData sd = compileLight(spot);
+    auto at_angle = [&](float deg) {
+        const float r = std::tan(glm::radians(deg)) * 10.0f;
+        return shd::evalLight(sd, glm::vec3(r, 0, 0)).irradiance.x * (100.0f + r * r) / 100.0f;  // undo 1/d^2
+    };
+    EXPECT_NEAR(at_angle(0.0f), 1.0f, 1e-5f);
+    EXPECT_NEAR(at_angle(19.0f), 1.0f, 1e-5f);
+    EXPECT_NEAR(at_angle(31.0f), 0.0f, 1e-6f);
+    EXPECT_GT(at_angle(25.0f), 0.05f);
+    EXPECT_LT(at_angle(25.0f), 0.95f);
+
+    Light sun = makeLight(LightType::Directional);
+    sun.direction = glm::vec3(0, -2, 0);  // normalized by compileLight
+    sun.intensity = 3.0f;
+    const shd::LightSample s = shd::evalLight(compileLight(sun), glm::vec3(1e5f, 0, 0));
+    EXPECT_NEAR(s.toLight.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(s.irradiance.x, 3.0f, 1e-6f);
+    // A Lambert surface facing the sun reflects albedo/pi of the irradiance.
+    EXPECT_NEAR(shd::lambert(glm::vec3(0.5f), glm::vec3(0, 1, 0), s).x, 0.5f / M_PI * 3.0f, 1e-6f);
+}
+
+TEST(Density, ProfilesOfEveryVolumeType) {
+    Volume box;
+    box.type = VolumeType::Box;
+    box.edge_fade = 0.2f;
+    box.transform.scale = glm::vec3(4.0f, 2.0f, 2.0f);
+    box.transform.translation = glm::vec3(10.0f, 0.0f, 0.0f);
+    const shd::VolumeData b = compileVolume(box);
+    EXPECT_NEAR(shd::boxDensity(b, glm::vec3(10, 0, 0)), 1.0f, 1e-6f);
+    EXPECT_NEAR(shd::boxDensity(b, glm::vec3(11.5f, 0, 0)), 1.0f, 1e-6f);  // d = 0.75 < 0.8
+    EXPECT_EQ(shd::boxDensity(b, glm::vec3(12.01f, 0, 0)), 0.0f);
+    const float mid = shd::boxDensity(b, glm::vec3(11.8f, 0, 0));  // d = 0.9: smoothstep(0.8, 1, 0.9) = 0.5
+    EXPECT_NEAR(mid, 0.5f, 1e-4f);
+    box.edge_fade = 0.0f;
+    EXPECT_EQ(shd::boxDensity(compileVolume(box), glm::vec3(11.99f, 0, 0)), 1.0f);
+
+    Volume h;
+    h.type = VolumeType::Height;
+    h.base_height = 1.0f;
+    h.falloff = 0.5f;
+    const shd::VolumeData he = compileVolume(h);
+    EXPECT_EQ(shd::analyticDensity(he, glm::vec3(0, -50, 0), glm::vec3(0)), 1.0f);
+    EXPECT_NEAR(shd::analyticDensity(he, glm::vec3(0, 3, 0), glm::vec3(0)), std::exp(-1.0f), 1e-6f);
+    h.profile = HeightProfile::Linear;
+    h.transition_height = 4.0f;
+    const shd::VolumeData hl = compileVolume(h);
+    EXPECT_NEAR(shd::analyticDensity(hl, glm::vec3(0, 2, 0), glm::vec3(0)), 0.75f, 1e-6f);
+    EXPECT_EQ(shd::analyticDensity(hl, glm::vec3(0, 6, 0), glm::vec3(0)), 0.0f);
+
+    Volume dv;
+    dv.type = VolumeType::Depth;
+    dv.start_distance = 5.0f;
+    dv.visibility_distance = 30.0f;
+    const shd::VolumeData dd = compileVolume(dv);
+    const glm::vec3 cam(1, 2, 3);
+    EXPECT_EQ(shd::analyticDensity(dd, cam + glm::vec3(4.9f, 0, 0), cam), 0.0f);
+    EXPECT_NEAR(shd::analyticDensity(dd, cam + glm::vec3(0, 0, 35.0f), cam), 1.0f - std::exp(-3.0f), 1e-5f);
+}
+
+TEST(Media, OverlapsAddAndPhaseIsScatteringWeighted) {
+    Volume a, b;
+    a.type = b.type = VolumeType::Height;
+    a.falloff = b.falloff = 0.0f;  // density 1 everywhere
+    a.medium.scattering = glm::vec3(1.0f);
+    a.medium.absorption = glm::vec3(0.5f);
+    a.medium.emission = glm::vec3(0.25f);
+    a.medium.phase_g = 0.8f;
+    b.medium.scattering = glm::vec3(3.0f);
+    b.medium.absorption = glm::vec3(0.0f);
+    b.medium.emission = glm::vec3(0.0f);
+    b.medium.phase_g = -0.4f;
+    Scene scene;
+    scene.volumes = {a, b};
+    const shd::MediaSample m = mediaAt(compileScene(scene), glm::vec3(0.0f));
+    EXPECT_NEAR(m.sigmaS.x, 4.0f, 1e-6f);
+    EXPECT_NEAR(m.sigmaT.x, 4.5f, 1e-6f);
+    EXPECT_NEAR(m.emission.x, 0.25f, 1e-6f);
+    EXPECT_NEAR(shd::mediaPhaseG(m), (1.0f * 0.8f + 3.0f * -0.4f) / 4.0f, 1e-6f);
+    EXPECT_EQ(shd::mediaPhaseG(shd::emptyMedia()), 0.0f);
+}

@@ -1,6 +1,7 @@
 // Thin language layer so that one header compiles as C++ (with GLM) and as GLSL 4.50.
 // Rules for code in shaders/shared/: no references, no out-parameters (return structs), no
-// constructors with braces, float literals with an f suffix, every function defined before use.
+// constructors with braces, float literals with an f suffix, every function defined before use and
+// declared with BRUME_FUNC (inline in C++, so the header can be included by many translation units).
 #ifndef BRUME_SHARED_COMMON_H
 #define BRUME_SHARED_COMMON_H
 
@@ -13,10 +14,12 @@
     using uint = std::uint32_t;
 #define BRUME_NAMESPACE_END }
 #define BRUME_CONST inline constexpr
+#define BRUME_FUNC inline
 #else
 #define BRUME_NAMESPACE_BEGIN
 #define BRUME_NAMESPACE_END
 #define BRUME_CONST const
+#define BRUME_FUNC
 #endif
 
 BRUME_NAMESPACE_BEGIN

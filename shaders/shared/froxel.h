@@ -13,28 +13,28 @@
 
 BRUME_NAMESPACE_BEGIN
 
-int brumeDivRoundUp(int n, int d) { return (n + d - 1) / d; }
+BRUME_FUNC int brumeDivRoundUp(int n, int d) { return (n + d - 1) / d; }
 
-float viewDepthFromSliceT(float t, float zNear, float zFar, float exponent) {
+BRUME_FUNC float viewDepthFromSliceT(float t, float zNear, float zFar, float exponent) {
     float tc = clamp(t, 0.0f, 1.0f);
     return zNear + (zFar - zNear) * pow(tc, exponent);
 }
 
-float sliceTFromViewDepth(float z, float zNear, float zFar, float exponent) {
+BRUME_FUNC float sliceTFromViewDepth(float z, float zNear, float zFar, float exponent) {
     float u = clamp((z - zNear) / (zFar - zNear), 0.0f, 1.0f);
     return pow(u, 1.0f / exponent);
 }
 
 // View-space direction through a pixel-space position (pixels, origin top-left, y down), scaled so
 // that its z is -1: the point at view depth z is ray * z.
-vec3 viewRayFromPixel(vec2 pixel, FrameUniforms f) {
+BRUME_FUNC vec3 viewRayFromPixel(vec2 pixel, FrameUniforms f) {
     float ndcX = 2.0f * pixel.x / float(f.counts.x) - 1.0f;
     float ndcY = 1.0f - 2.0f * pixel.y / float(f.counts.y);
     return vec3(ndcX * f.projection.x, ndcY * f.projection.y, -1.0f);
 }
 
 // World position of a point given in froxel coordinates (x, y in tiles, z in slices; fractional).
-vec3 worldFromFroxelCoord(vec3 coord, FrameUniforms f) {
+BRUME_FUNC vec3 worldFromFroxelCoord(vec3 coord, FrameUniforms f) {
     vec2 pixel = vec2(coord.x, coord.y) * float(f.froxelDims.w);
     float t = coord.z / float(f.froxelDims.z);
     float z = viewDepthFromSliceT(t, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
@@ -43,7 +43,7 @@ vec3 worldFromFroxelCoord(vec3 coord, FrameUniforms f) {
 }
 
 // Length of the camera ray inside slice s of the pixel column through `pixel` [m].
-float sliceRayLength(int s, vec2 pixel, FrameUniforms f) {
+BRUME_FUNC float sliceRayLength(int s, vec2 pixel, FrameUniforms f) {
     float n = float(f.froxelDims.z);
     float z0 = s == 0 ? 0.0f
                       : viewDepthFromSliceT(float(s) / n, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
@@ -55,9 +55,42 @@ float sliceRayLength(int s, vec2 pixel, FrameUniforms f) {
 // i.e. at t = (s + 1) / N. Given a view depth, returns the continuous slice-entry coordinate w
 // (entry index + fraction) to interpolate at; w < 0 means "between the camera and entry 0", to be
 // blended with the empty result (scattering 0, transmittance 1) by (w + 1).
-float integratedEntryFromViewDepth(float z, FrameUniforms f) {
+BRUME_FUNC float integratedEntryFromViewDepth(float z, FrameUniforms f) {
     float t = sliceTFromViewDepth(z, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
     return t * float(f.froxelDims.z) - 1.0f;
+}
+
+// Where the composite reads the integrated volume for a pixel (pixel-space position, e.g. the
+// pixel centre x + 0.5) at a view depth. The rule, identical on CPU and GPU:
+//   1. for each of entries.x and entries.y, bilinear between the four column centres
+//      ((i + 0.5) * tile px): mix(mix(c(x0,y0), c(x1,y0), w.x), mix(c(x0,y1), c(x1,y1), w.x), w.y)
+//      (columns = (x0, y0, x1, y1); coordinates clamped at the grid border);
+//   2. mix(entry0 result, entry1 result, w.z);
+//   3. mix(empty (scattering 0, transmittance 1), that, entryWeight): entryWeight < 1 only in front
+//      of entry 0's far boundary, where w from integratedEntryFromViewDepth is negative.
+// Depths past the froxel far read the last entry (no fog is added beyond the froxel range).
+struct IntegratedLookup {
+    ivec4 columns;      // x0, y0, x1, y1
+    ivec2 entries;      // slice entries e0, e1
+    vec3 weights;       // fractions toward x1, y1, e1
+    float entryWeight;  // weight of the interpolated entries against the empty result
+};
+
+BRUME_FUNC IntegratedLookup integratedLookup(vec2 pixel, float viewDepth, FrameUniforms f) {
+    IntegratedLookup r;
+    vec2 maxColumn = vec2(float(f.froxelDims.x - 1), float(f.froxelDims.y - 1));
+    vec2 c = clamp(pixel / float(f.froxelDims.w) - vec2(0.5f), vec2(0.0f), maxColumn);
+    ivec2 lo = ivec2(floor(c));
+    ivec2 hi = min(lo + ivec2(1), ivec2(maxColumn));
+    float lastEntry = float(f.froxelDims.z - 1);
+    float w = min(integratedEntryFromViewDepth(viewDepth, f), lastEntry);
+    float wc = max(w, 0.0f);
+    int e0 = int(floor(wc));
+    r.columns = ivec4(lo.x, lo.y, hi.x, hi.y);
+    r.entries = ivec2(e0, min(e0 + 1, f.froxelDims.z - 1));
+    r.weights = vec3(c.x - floor(c.x), c.y - floor(c.y), wc - floor(wc));
+    r.entryWeight = clamp(w + 1.0f, 0.0f, 1.0f);
+    return r;
 }
 
 BRUME_NAMESPACE_END

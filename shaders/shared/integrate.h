@@ -10,14 +10,14 @@
 
 BRUME_NAMESPACE_BEGIN
 
-float slabPhi(float x) {
+BRUME_FUNC float slabPhi(float x) {
     if (x < 0.01f) return 1.0f - x * (0.5f - x * (1.0f / 6.0f - x * (1.0f / 24.0f)));
     return (1.0f - exp(-x)) / x;
 }
 
-vec3 slabTransmittance(vec3 sigmaT, float d) { return exp(-sigmaT * d); }
+BRUME_FUNC vec3 slabTransmittance(vec3 sigmaT, float d) { return exp(-sigmaT * d); }
 
-vec3 slabScattering(vec3 source, vec3 sigmaT, float d) {
+BRUME_FUNC vec3 slabScattering(vec3 source, vec3 sigmaT, float d) {
     vec3 x = sigmaT * d;
     return source * d * vec3(slabPhi(x.x), slabPhi(x.y), slabPhi(x.z));
 }
@@ -28,21 +28,30 @@ struct Accumulated {
     vec3 transmittance;  // fraction of light from behind that survives
 };
 
-Accumulated emptyAccumulated() {
+BRUME_FUNC Accumulated emptyAccumulated() {
     Accumulated a;
     a.scattering = vec3(0.0f);
     a.transmittance = vec3(1.0f);
     return a;
 }
 
-Accumulated accumulateSlab(Accumulated a, vec3 source, vec3 sigmaT, float d) {
+BRUME_FUNC Accumulated accumulateSlab(Accumulated a, vec3 source, vec3 sigmaT, float d) {
     a.scattering += a.transmittance * slabScattering(source, sigmaT, d);
     a.transmittance *= slabTransmittance(sigmaT, d);
     return a;
 }
 
+// Linear interpolation of two accumulation states (the composite's lookup, see integratedLookup).
+// Blending (S, T) pairs linearly keeps S + A T fixed when every pair has it, so energy is kept.
+BRUME_FUNC Accumulated mixAccumulated(Accumulated a, Accumulated b, float t) {
+    Accumulated r;
+    r.scattering = mix(a.scattering, b.scattering, t);
+    r.transmittance = mix(a.transmittance, b.transmittance, t);
+    return r;
+}
+
 // Fog over a surface (or the sky): radiance behind * transmittance + scattered.
-vec3 compositeFog(vec3 background, Accumulated a) { return background * a.transmittance + a.scattering; }
+BRUME_FUNC vec3 compositeFog(vec3 background, Accumulated a) { return background * a.transmittance + a.scattering; }
 
 BRUME_NAMESPACE_END
 

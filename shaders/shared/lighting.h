@@ -15,14 +15,19 @@ BRUME_CONST float LIGHT_MIN_DISTANCE = 0.01f;
 // Henyey-Greenstein phase function [1/sr]. cosTheta is the cosine between the direction the light
 // travels and the direction it is scattered into; g > 0 scatters forward. Integrates to 1 over the
 // sphere.
-float hgPhase(float g, float cosTheta) {
+BRUME_FUNC float hgPhase(float g, float cosTheta) {
     float gc = clamp(g, -PHASE_G_LIMIT, PHASE_G_LIMIT);
-    float denom = max(1.0f + gc * gc - 2.0f * gc * cosTheta, 1.0e-12f);
+    // 1 + g^2 - 2 g cos, written as (1 - g)^2 + 2 g (1 - cos) for g >= 0 and (1 + g)^2 - 2 g (1 + cos)
+    // for g < 0: both terms are then non-negative, so there is no cancellation at the peak, where the
+    // naive form loses ~25% of its value in float at |g| = 0.999.
+    float denom = gc >= 0.0f ? (1.0f - gc) * (1.0f - gc) + 2.0f * gc * (1.0f - cosTheta)
+                             : (1.0f + gc) * (1.0f + gc) - 2.0f * gc * (1.0f + cosTheta);
+    denom = max(denom, 1.0e-12f);
     return BRUME_INV_4PI * (1.0f - gc * gc) / (denom * sqrt(denom));
 }
 
 // Smooth range window: 1 at the light, 0 at `range` and beyond, (1 - (r/range)^4)^2.
-float rangeWindow(float dist, float range) {
+BRUME_FUNC float rangeWindow(float dist, float range) {
     if (range <= 0.0f) return 1.0f;
     float x = dist / range;
     float x2 = x * x;
@@ -31,7 +36,7 @@ float rangeWindow(float dist, float range) {
 }
 
 // Spot cone: 1 inside the inner angle, 0 outside the outer, Hermite smoothstep on the cosine between.
-float spotCone(float cosAngle, float cosOuter, float cosInner) {
+BRUME_FUNC float spotCone(float cosAngle, float cosOuter, float cosInner) {
     if (cosInner - cosOuter < 1.0e-6f) return cosAngle >= cosOuter ? 1.0f : 0.0f;
     return smoothstep(cosOuter, cosInner, cosAngle);
 }
@@ -42,7 +47,7 @@ struct LightSample {
     float distance;    // distance to the light [m] (BRUME_HUGE for directional)
 };
 
-LightSample evalLight(LightData l, vec3 p) {
+BRUME_FUNC LightSample evalLight(LightData l, vec3 p) {
     LightSample s;
     if (l.kind.x == LIGHT_DIRECTIONAL) {
         s.toLight = -vec3(l.direction);
@@ -65,14 +70,14 @@ LightSample evalLight(LightData l, vec3 p) {
 
 // Radiance scattered toward the viewer at p by one light, per unit sigma_s (multiply by sigma_s and
 // the visibility). viewDir is the unit direction from the camera to p.
-vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, float g) {
+BRUME_FUNC vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, float g) {
     // The light travels along -toLight; scattered light leaves toward the camera, along -viewDir.
     float cosTheta = dot(-s.toLight, -viewDir);
     return s.irradiance * (hgPhase(g, cosTheta) * l.intensity.w);
 }
 
 // Lambertian surface: radiance = albedo / pi * irradiance * cos.
-vec3 lambert(vec3 albedo, vec3 normal, LightSample s) {
+BRUME_FUNC vec3 lambert(vec3 albedo, vec3 normal, LightSample s) {
     return albedo * (1.0f / BRUME_PI) * s.irradiance * max(dot(normal, s.toLight), 0.0f);
 }
 

@@ -9,7 +9,7 @@
 
 BRUME_NAMESPACE_BEGIN
 
-float boxDensity(VolumeData v, vec3 worldPos) {
+BRUME_FUNC float boxDensity(VolumeData v, vec3 worldPos) {
     vec3 q = vec3(v.localFromWorld * vec4(worldPos, 1.0f));
     float d = max(abs(q.x), max(abs(q.y), abs(q.z))) * 2.0f;
     if (d >= 1.0f) return 0.0f;
@@ -18,28 +18,28 @@ float boxDensity(VolumeData v, vec3 worldPos) {
     return 1.0f - smoothstep(1.0f - fade, 1.0f, d);
 }
 
-float heightExponentialDensity(VolumeData v, vec3 worldPos) {
+BRUME_FUNC float heightExponentialDensity(VolumeData v, vec3 worldPos) {
     return exp(-v.params.y * max(worldPos.y - v.params.x, 0.0f));
 }
 
-float heightLinearDensity(VolumeData v, vec3 worldPos) {
+BRUME_FUNC float heightLinearDensity(VolumeData v, vec3 worldPos) {
     return clamp(1.0f - max(worldPos.y - v.params.x, 0.0f) / v.params.y, 0.0f, 1.0f);
 }
 
-float depthDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
+BRUME_FUNC float depthDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
     float r = length(worldPos - cameraPos);
     if (r < v.params.y) return 0.0f;
     return 1.0f - exp(-3.0f * (r - v.params.y) / v.params.x);
 }
 
-bool insideBounds(VolumeData v, vec3 p) {
+BRUME_FUNC bool insideBounds(VolumeData v, vec3 p) {
     return p.x >= v.worldMin.x && p.y >= v.worldMin.y && p.z >= v.worldMin.z &&
            p.x <= v.worldMax.x && p.y <= v.worldMax.y && p.z <= v.worldMax.z;
 }
 
 // Density of an analytic volume at a world position (VDB volumes are sampled by their own code and
 // report 0 here).
-float analyticDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
+BRUME_FUNC float analyticDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
     int k = v.kind.x;
     if (k == VOLUME_BOX) return boxDensity(v, worldPos);
     if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialDensity(v, worldPos);
@@ -56,7 +56,7 @@ struct MediaSample {
     float gWeight;      // sum of weight (density x mean sigma_s)
 };
 
-MediaSample emptyMedia() {
+BRUME_FUNC MediaSample emptyMedia() {
     MediaSample m;
     m.sigmaS = vec3(0.0f);
     m.sigmaT = vec3(0.0f);
@@ -66,7 +66,7 @@ MediaSample emptyMedia() {
     return m;
 }
 
-MediaSample addMedium(MediaSample m, VolumeData v, float density) {
+BRUME_FUNC MediaSample addMedium(MediaSample m, VolumeData v, float density) {
     if (density <= 0.0f) return m;
     vec3 s = vec3(v.sigmaS_g) * density;
     m.sigmaS += s;
@@ -78,7 +78,7 @@ MediaSample addMedium(MediaSample m, VolumeData v, float density) {
     return m;
 }
 
-float mediaPhaseG(MediaSample m) { return m.gWeight > 0.0f ? m.gWeighted / m.gWeight : 0.0f; }
+BRUME_FUNC float mediaPhaseG(MediaSample m) { return m.gWeight > 0.0f ? m.gWeighted / m.gWeight : 0.0f; }
 
 BRUME_NAMESPACE_END
 
