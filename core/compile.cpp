@@ -102,6 +102,19 @@ shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
     return m;
 }
 
+shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1) {
+    if (!(s1 > s0)) return a;
+    shd::DistantSegment seg = shd::emptyDistantSegment();
+    for (const shd::VolumeData& v : cs.volumes) {
+        const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, s0, s1);
+        if (len <= 0.0f) continue;
+        glm::vec3 light = cs.ambient;
+        for (const shd::LightData& l : cs.lights) light += shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w);
+        seg = shd::addDistantVolume(seg, v, len, light);
+    }
+    return shd::accumulateDistant(a, seg);
+}
+
 shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,
                                      const FroxelSettings& fs, glm::vec3 jitter) {
     shd::FrameUniforms f{};

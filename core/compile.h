@@ -25,6 +25,11 @@ CompiledScene compileScene(const Scene& scene);
 // until the VDB importer provides samplers).
 shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 worldPos);
 
+// Closed-form fog of the height and depth volumes along the camera ray [s0, s1] (origin = camera
+// position, dir unit), lit by the directional lights and the ambient: what lies past the froxel range
+// (shaders/shared/distant.h). Accumulated onto `a`.
+shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1);
+
 // Per-frame constants for an image of width x height with the given froxel settings.
 // jitter is the sample position inside each froxel, (0.5, 0.5, 0.5) = centres.
 shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,

@@ -7,5 +7,6 @@
 #include "media.h"
 #include "lighting.h"
 #include "integrate.h"
+#include "distant.h"
 #include "tonemap.h"
 #endif

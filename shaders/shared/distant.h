@@ -1,0 +1,125 @@
+// Fog past the froxel range, in closed form. Beyond the last slice the composite continues each
+// pixel's ray to its surface (or the camera's far plane) through the height and depth volumes
+// analytically, so there is no seam where the froxel grid ends and the sky gets fog too.
+//
+// Along a ray s -> origin + s * dir the density length D = integral of density ds has a closed form
+// for every height and depth profile. With a source K that is constant along the ray (directional
+// lights and ambient at a fixed view direction; emission), the scattered radiance of one medium is
+// exactly K * D * phi(sigma_t * D) and its transmittance exp(-sigma_t * D). Several volumes are
+// combined as one mixture over the segment (exact when one volume dominates; documented in
+// docs/gpu.md). Box and VDB volumes and point/spot lights end at the froxel range.
+#ifndef BRUME_SHARED_DISTANT_H
+#define BRUME_SHARED_DISTANT_H
+
+#include "integrate.h"
+#include "lighting.h"
+#include "media.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// Ray distance in [0, len] where y(s) = y0 + dy * s crosses `level` (0 when it never does). Splitting
+// in ray-distance space keeps precision on near-horizontal rays, where differences of heights don't.
+BRUME_FUNC float heightCrossing(float y0, float dy, float len, float level) {
+    if (dy == 0.0f) return 0.0f;
+    return clamp((level - y0) / dy, 0.0f, len);
+}
+
+// Integral of exp(-f * max(y(s) - base, 0)) over s in [a, b]; the piece lies on one side of base.
+BRUME_FUNC float heightExponentialPiece(float y0, float dy, float a, float b, float base, float f) {
+    float len = b - a;
+    if (len <= 0.0f) return 0.0f;
+    float yA = y0 + dy * a;
+    float yB = y0 + dy * b;
+    if ((yA + yB) * 0.5f <= base) return len;
+    // Integrate upward from the piece's lowest point: the exponent of phi is then non-negative.
+    float yLow = max(min(yA, yB), base);
+    return exp(-f * (yLow - base)) * len * slabPhi(f * abs(dy) * len);
+}
+
+// Integral of exp(-f * max(y(s) - base, 0)) over s in [0, len], y(s) = y0 + dy * s.
+BRUME_FUNC float heightExponentialLength(float y0, float dy, float len, float base, float f) {
+    float c = heightCrossing(y0, dy, len, base);
+    return heightExponentialPiece(y0, dy, 0.0f, c, base, f) + heightExponentialPiece(y0, dy, c, len, base, f);
+}
+
+// Integral of clamp(1 - max(y(s) - base, 0) / h, 0, 1) over s in [0, len]: the density is linear in s
+// between the crossings of base and base + h, so the midpoint rule on those pieces is exact.
+BRUME_FUNC float heightLinearLength(float y0, float dy, float len, float base, float h) {
+    float c0 = heightCrossing(y0, dy, len, base);
+    float c1 = heightCrossing(y0, dy, len, base + h);
+    float sA = min(c0, c1);
+    float sB = max(c0, c1);
+    float total = 0.0f;
+    float edges[4] = {0.0f, sA, sB, len};
+    for (int i = 0; i < 3; ++i) {
+        float mid = 0.5f * (edges[i] + edges[i + 1]);
+        float density = clamp(1.0f - max(y0 + dy * mid - base, 0.0f) / h, 0.0f, 1.0f);
+        total += (edges[i + 1] - edges[i]) * density;
+    }
+    return total;
+}
+
+// Integral of the depth fog's density over ray distances [s0, s1] from the camera (the ray starts
+// at the camera, so the distance to the camera is s).
+BRUME_FUNC float depthFogLength(float s0, float s1, float start, float visibility) {
+    float a = max(s0, start);
+    if (s1 <= a) return 0.0f;
+    float k = 3.0f / visibility;
+    // (s1 - a) - (e^{-k(a-start)} - e^{-k(s1-start)}) / k, with the difference written through phi
+    // so it neither cancels nor divides by a tiny k.
+    float len = s1 - a;
+    float ea = exp(-k * (a - start));
+    return len - ea * len * slabPhi(k * len);
+}
+
+// Density length of one volume along camera ray [s0, s1] (origin = camera position, dir unit).
+BRUME_FUNC float distantDensityLength(VolumeData v, vec3 origin, vec3 dir, float s0, float s1) {
+    if (s1 <= s0) return 0.0f;
+    int k = v.kind.x;
+    float y0 = origin.y + dir.y * s0;
+    if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialLength(y0, dir.y, s1 - s0, v.params.x, v.params.y);
+    if (k == VOLUME_HEIGHT_LINEAR) return heightLinearLength(y0, dir.y, s1 - s0, v.params.x, v.params.y);
+    if (k == VOLUME_DEPTH) return depthFogLength(s0, s1, v.params.y, v.params.x);
+    return 0.0f;
+}
+
+// In-scattering per unit sigma_s from a light that is the same everywhere along the ray
+// (directional lights); 0 for point and spot lights.
+BRUME_FUNC vec3 distantLightPerSigmaS(LightData l, vec3 dir, float g) {
+    if (l.kind.x != LIGHT_DIRECTIONAL) return vec3(0.0f);
+    return inScatterPerSigmaS(l, evalLight(l, vec3(0.0f)), dir, g);
+}
+
+// Running sums over the volumes of one distant segment.
+struct DistantSegment {
+    vec3 opticalDepth;   // sum of sigma_t * D
+    vec3 sourceLength;   // sum of K * D, K = sigma_s * (lights + ambient) + emission
+};
+
+BRUME_FUNC DistantSegment emptyDistantSegment() {
+    DistantSegment d;
+    d.opticalDepth = vec3(0.0f);
+    d.sourceLength = vec3(0.0f);
+    return d;
+}
+
+// Adds one volume; lightPerSigmaS = sum over lights of distantLightPerSigmaS(l, dir, g of this
+// volume) + ambient.
+BRUME_FUNC DistantSegment addDistantVolume(DistantSegment d, VolumeData v, float densityLength, vec3 lightPerSigmaS) {
+    if (densityLength <= 0.0f) return d;
+    vec3 sigmaS = vec3(v.sigmaS_g);
+    d.opticalDepth += (sigmaS + vec3(v.sigmaA)) * densityLength;
+    d.sourceLength += (sigmaS * lightPerSigmaS + vec3(v.emission)) * densityLength;
+    return d;
+}
+
+BRUME_FUNC Accumulated accumulateDistant(Accumulated a, DistantSegment d) {
+    vec3 phi = vec3(slabPhi(d.opticalDepth.x), slabPhi(d.opticalDepth.y), slabPhi(d.opticalDepth.z));
+    a.scattering += a.transmittance * d.sourceLength * phi;
+    a.transmittance *= exp(-d.opticalDepth);
+    return a;
+}
+
+BRUME_NAMESPACE_END
+
+#endif
