@@ -1,0 +1,212 @@
+// The CPU froxel renderer (Hillaire 2015): the GPU passes' oracle. Four passes, each a loop over
+// independent items writing only its own outputs, so any thread count gives the same bits:
+//   voxelize   froxel (x, y, s) -> mediaScatteringG, mediaExtinction, mediaEmission
+//   light      froxel           -> source (sigma_t = 0 froxels skip lighting: S = emission)
+//   integrate  column (x, y)    -> integratedScattering, integratedTransmittance (front to back)
+//   composite  pixel            -> image (surface or sky behind the fog read from the integrated volume)
+// Every formula comes from shaders/shared/, which the GPU passes include too.
+#include <atomic>
+#include <cmath>
+#include <mutex>
+
+#include "geometry.h"
+#include "parallel.h"
+#include "render.h"
+
+namespace brume {
+namespace {
+
+using glm::ivec3;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+
+size_t froxelIndex(ivec3 dims, int x, int y, int s) {
+    return (static_cast<size_t>(s) * static_cast<size_t>(dims.y) + static_cast<size_t>(y)) *
+               static_cast<size_t>(dims.x) +
+           static_cast<size_t>(x);
+}
+
+// Reports progress over the four passes, weighted by their item counts; calls the user's callback
+// at most once per percent (the contract allows ~100 calls).
+class Progress {
+public:
+    Progress(const ProgressFn& fn, double totalItems) : fn_(fn), total_(std::max(totalItems, 1.0)) {}
+    void finishedPass(double items) { base_ += items; }
+    // `done` items of the current pass have finished.
+    void report(int done) {
+        if (!fn_) return;
+        const int percent = static_cast<int>(100.0 * (base_ + done) / total_);
+        int last = last_.load();
+        while (percent > last) {
+            if (last_.compare_exchange_weak(last, percent)) {
+                std::lock_guard<std::mutex> lock(mutex_);
+                fn_(static_cast<float>(std::min(percent, 100)) * 0.01f);
+                return;
+            }
+        }
+    }
+
+private:
+    const ProgressFn& fn_;
+    double total_;
+    double base_ = 0.0;
+    std::atomic<int> last_{-1};
+    std::mutex mutex_;
+};
+
+// Pass 1. One row of froxels (y, s) per item: the media at each froxel's sample point.
+void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
+    for (int x = 0; x < v.dims.x; ++x) {
+        const vec3 coord = vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(s));
+        const vec3 p = shd::worldFromFroxelCoord(coord + vec3(v.frame.jitter), v.frame);
+        const shd::MediaSample m = mediaAt(cs, p);
+        const size_t i = froxelIndex(v.dims, x, y, s);
+        v.mediaScatteringG[i] = vec4(m.sigmaS, shd::mediaPhaseG(m));
+        v.mediaExtinction[i] = vec4(m.sigmaT, 0.0f);
+        v.mediaEmission[i] = vec4(m.emission, 0.0f);
+    }
+}
+
+// Pass 2. Source term S = sigma_s (sum of lights' in-scattering + ambient) + emission, no shadows.
+// Returns how many froxels of the row were lit.
+size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
+    size_t lit = 0;
+    for (int x = 0; x < v.dims.x; ++x) {
+        const size_t i = froxelIndex(v.dims, x, y, s);
+        const vec3 sigmaT = vec3(v.mediaExtinction[i]);
+        // Nothing scatters where nothing extinguishes, but a purely emissive medium still glows.
+        if (sigmaT == vec3(0.0f)) {
+            v.source[i] = vec4(vec3(v.mediaEmission[i]), 0.0f);
+            continue;
+        }
+        ++lit;
+        const vec3 coord = vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(s));
+        const vec3 p = shd::worldFromFroxelCoord(coord + vec3(v.frame.jitter), v.frame);
+        const vec3 viewDir = glm::normalize(p - vec3(v.frame.cameraPosition));
+        const float g = v.mediaScatteringG[i].w;
+        vec3 perSigmaS = vec3(v.frame.ambient);
+        for (const shd::LightData& l : cs.lights) {
+            perSigmaS += shd::inScatterPerSigmaS(l, shd::evalLight(l, p), viewDir, g);
+        }
+        const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
+        v.source[i] = vec4(sourceRgb, 0.0f);
+    }
+    return lit;
+}
+
+// Pass 3. Front to back along one column; entry s holds camera -> far boundary of slice s.
+void integrateColumn(FroxelVolumes& v, int x, int y) {
+    const float tile = static_cast<float>(v.frame.froxelDims.w);
+    const vec2 pixel = (vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f)) * tile;
+    shd::Accumulated acc = shd::emptyAccumulated();
+    for (int s = 0; s < v.dims.z; ++s) {
+        const size_t i = froxelIndex(v.dims, x, y, s);
+        const float d = shd::sliceRayLength(s, pixel, v.frame);
+        acc = shd::accumulateSlab(acc, vec3(v.source[i]), vec3(v.mediaExtinction[i]), d);
+        v.integratedScattering[i] = vec4(acc.scattering, 0.0f);
+        v.integratedTransmittance[i] = vec4(acc.transmittance, 0.0f);
+    }
+}
+
+shd::Accumulated integratedAt(const FroxelVolumes& v, int x, int y, int s) {
+    const size_t i = froxelIndex(v.dims, x, y, s);
+    shd::Accumulated a;
+    a.scattering = vec3(v.integratedScattering[i]);
+    a.transmittance = vec3(v.integratedTransmittance[i]);
+    return a;
+}
+
+// The composite's lookup rule, in the order written beside shd::integratedLookup.
+shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float viewDepth) {
+    const shd::IntegratedLookup k = shd::integratedLookup(pixel, viewDepth, v.frame);
+    shd::Accumulated byEntry[2];
+    for (int e = 0; e < 2; ++e) {
+        const int s = k.entries[e];
+        const shd::Accumulated row0 = shd::mixAccumulated(integratedAt(v, k.columns.x, k.columns.y, s),
+                                                          integratedAt(v, k.columns.z, k.columns.y, s), k.weights.x);
+        const shd::Accumulated row1 = shd::mixAccumulated(integratedAt(v, k.columns.x, k.columns.w, s),
+                                                          integratedAt(v, k.columns.z, k.columns.w, s), k.weights.x);
+        byEntry[e] = shd::mixAccumulated(row0, row1, k.weights.y);
+    }
+    const shd::Accumulated entries = shd::mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
+    return shd::mixAccumulated(shd::emptyAccumulated(), entries, k.entryWeight);
+}
+
+// Pass 4. One image row: the first surface hit (or the sky) behind the fog.
+void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const FroxelVolumes& v, Image& img,
+                  int y) {
+    const float cameraFar = v.frame.projection.w;
+    for (int x = 0; x < img.width; ++x) {
+        const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
+        // viewRay has z = -1, so distance along it / its length is the view depth.
+        const vec3 viewRay = shd::viewRayFromPixel(pixel, v.frame);
+        const float rayPerDepth = glm::length(viewRay);
+        const vec3 dir = glm::normalize(vec3(v.frame.worldFromView * vec4(viewRay, 0.0f)));
+        const SurfaceHit hit = geometry.intersect(Ray{vec3(v.frame.cameraPosition), dir}, cameraFar * rayPerDepth);
+        vec3 background = cs.ambient;
+        float viewDepth = cameraFar;
+        if (hit.hit()) {
+            background = shadeSurface(cs, geometry, hit);
+            viewDepth = hit.t / rayPerDepth;
+        }
+        shd::Accumulated fog = sampleIntegrated(v, pixel, viewDepth);
+        // Past the froxel range, height and depth fog continue in closed form (shaders/shared/distant.h).
+        const float froxelFar = v.frame.froxelRange.y;
+        if (viewDepth > froxelFar) {
+            fog = accumulateDistantFog(cs, fog, dir, froxelFar * rayPerDepth, viewDepth * rayPerDepth);
+        }
+        img.at(x, y) = shd::compositeFog(background, fog);
+    }
+}
+
+FroxelVolumes allocateVolumes(const shd::FrameUniforms& frame) {
+    FroxelVolumes v;
+    v.frame = frame;
+    v.dims = ivec3(frame.froxelDims);
+    const size_t n = static_cast<size_t>(v.dims.x) * static_cast<size_t>(v.dims.y) * static_cast<size_t>(v.dims.z);
+    for (std::vector<vec4>* vol : {&v.mediaScatteringG, &v.mediaExtinction, &v.mediaEmission, &v.source,
+                                   &v.integratedScattering, &v.integratedTransmittance}) {
+        vol->assign(n, vec4(0.0f));
+    }
+    return v;
+}
+
+}  // namespace
+
+FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
+    FroxelResult result;
+    if (request.width < 1 || request.height < 1) return result;
+    const CompiledScene cs = compileScene(scene);
+    const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
+    FroxelVolumes& v = result.volumes;
+    v = allocateVolumes(makeFrameUniforms(scene, cs, request.width, request.height, fs));
+    result.image = Image(request.width, request.height);
+
+    const int rows = v.dims.y * v.dims.z;  // froxel rows (y, s): the voxelize and light work items
+    const int columns = v.dims.x * v.dims.y;
+    const int threads = request.threads;
+    Progress progress(request.progress, 2.0 * rows + columns + request.height);
+    auto report = [&](int done) { progress.report(done); };
+
+    parallelFor(rows, threads, [&](int r) { voxelizeRow(cs, v, r % v.dims.y, r / v.dims.y); }, report);
+    progress.finishedPass(rows);
+
+    // Per-row counts summed afterwards keep the totals independent of scheduling.
+    std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
+    parallelFor(rows, threads,
+                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, v, r % v.dims.y, r / v.dims.y); },
+                report);
+    progress.finishedPass(rows);
+    for (size_t lit : litPerRow) v.litFroxels += lit;
+    v.skippedFroxels = v.source.size() - v.litFroxels;
+
+    parallelFor(columns, threads, [&](int c) { integrateColumn(v, c % v.dims.x, c / v.dims.x); }, report);
+    progress.finishedPass(columns);
+
+    const GeometrySet geometry(scene.geometry);
+    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, v, result.image, y); }, report);
+    return result;
+}
+
+}  // namespace brume
