@@ -56,7 +56,7 @@ inline constexpr Setting temporal_history_weight {"temporal.history_weight", K::
 
 inline constexpr Setting ambient          {"ambient", K::Vec3, "W/(m^2 sr)", 0, kBig, {0, 0, 0}, "", "Constant radiance arriving from every direction (sky); lights fog and surfaces unshadowed."};
 
-inline constexpr Setting light_type       {"lights[].type", K::Choice, "", 0, 0, {0}, "directional|point|spot", "Kind of light."};
+inline constexpr Setting light_type       {"lights[].type", K::Choice, "", 0, 0, {0}, "directional|point|spot", "Kind of light; required."};
 inline constexpr Setting light_name       {"lights[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting light_direction  {"lights[].direction", K::Vec3, "", -1, 1, {0.3, -1, 0.2}, "", "Direction the light travels (directional, spot); normalized on load, must not be zero."};
 inline constexpr Setting light_position   {"lights[].position", K::Vec3, "m", -kBig, kBig, {0, 2, 0}, "", "Light position (point, spot)."};
@@ -70,7 +70,7 @@ inline constexpr Setting light_fog_scale  {"lights[].fog_scale", K::Number, "", 
 inline constexpr Setting light_inner_deg  {"lights[type=spot].inner_deg", K::Number, "deg", 0, 179, {20}, "", "Half-angle of full intensity; must not exceed outer_deg."};
 inline constexpr Setting light_outer_deg  {"lights[type=spot].outer_deg", K::Number, "deg", 0, 179, {30}, "", "Half-angle where the cone reaches zero (smoothstep on the cosine in between)."};
 
-inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb", "Kind of fog volume."};
+inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb", "Kind of fog volume; required."};
 inline constexpr Setting volume_name      {"volumes[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting volume_edge_fade {"volumes[type=box].edge_fade", K::Number, "", 0, 1, {0.1}, "", "Fraction of the half-size over which density fades to 0 at the faces; 0 = hard edge."};
 inline constexpr Setting volume_base_height {"volumes[type=height].base_height", K::Number, "m", -kBig, kBig, {0}, "", "Height below which density is 1."};
@@ -92,7 +92,7 @@ inline constexpr Setting medium_absorption {"volumes[].medium.absorption", K::Ve
 inline constexpr Setting medium_emission  {"volumes[].medium.emission", K::Vec3, "W/(m^2 sr m)", 0, kBig, {0, 0, 0}, "", "Radiance emitted per meter of path at density 1."};
 inline constexpr Setting medium_phase_g   {"volumes[].medium.phase_g", K::Number, "", -1, 1, {0.2}, "", "Henyey-Greenstein anisotropy: > 0 forward, < 0 backward; evaluated with |g| <= 0.999."};
 
-inline constexpr Setting geometry_type    {"geometry[].type", K::Choice, "", 0, 0, {0}, "plane|box|sphere", "Kind of surface."};
+inline constexpr Setting geometry_type    {"geometry[].type", K::Choice, "", 0, 0, {0}, "plane|box|sphere", "Kind of surface; required."};
 inline constexpr Setting geometry_name    {"geometry[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting geometry_height  {"geometry[type=plane].height", K::Number, "m", -kBig, kBig, {0}, "", "Height of the horizontal plane (normal +Y)."};
 inline constexpr Setting geometry_center  {"geometry[type=sphere].center", K::Vec3, "m", -kBig, kBig, {0, 1, 0}, "", "Sphere centre."};
@@ -116,6 +116,13 @@ inline constexpr std::array kAll = {
     &geometry_type, &geometry_name, &geometry_height, &geometry_center, &geometry_radius, &geometry_albedo,
     &geometry_emission,
 };
+
+// Options of `brume render` that are not scene keys (so not in kAll, which is the scene format).
+// clang-format off
+inline constexpr Setting cli_exposure     {"--exposure", K::Number, "", 1e-6, 1e6, {1}, "", "Multiplies radiance before the PNG tone curve; EXR is written linear and unscaled."};
+inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames of temporal accumulation (froxel renderer; the reference ignores it)."};
+inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};
+// clang-format on
 
 }  // namespace settings
 }  // namespace brume

@@ -1,0 +1,103 @@
+#include "atomic_file.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace brume {
+namespace {
+
+Error osError(const std::string& path, const char* what, int err) {
+    return Error{path + ": " + what + ": " + std::strerror(err)};
+}
+
+// Temporary names are hidden, unique per process and call, and end in ".tmp" so that a leftover
+// from a killed process is recognisable.
+std::string tmpPathFor(const std::string& path, int attempt) {
+    static std::atomic<unsigned> counter{0};
+    const std::filesystem::path p(path);
+    const std::string name = "." + p.filename().string() + "." + std::to_string(::getpid()) + "." +
+                             std::to_string(counter++) + "." + std::to_string(attempt) + ".tmp";
+    return (p.parent_path() / name).string();
+}
+
+// Creates the temporary with O_EXCL (never reuses someone else's file) and mode 0666 & ~umask, the
+// permissions an ordinary new file gets.
+Result<std::string> createTmp(const std::string& path) {
+    for (int attempt = 0;; ++attempt) {
+        std::string tmp = tmpPathFor(path, attempt);
+        const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            ::close(fd);
+            return tmp;
+        }
+        if (errno != EEXIST || attempt >= 100) return osError(path, "cannot write", errno);
+    }
+}
+
+// Without the fsync a crash shortly after the rename can leave an empty file under the new name.
+Result<void> syncFile(const std::string& path, const std::string& tmp) {
+    const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return osError(path, "cannot write", errno);
+    const int rc = ::fsync(fd);
+    const int err = errno;
+    ::close(fd);
+    if (rc != 0) return osError(path, "cannot write", err);
+    return {};
+}
+
+// Makes the rename itself durable. Best effort: some filesystems refuse fsync on a directory, and
+// the new content is complete either way.
+void syncFolder(const std::string& path) {
+    const std::string folder = std::filesystem::path(path).parent_path().string();
+    const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+}  // namespace
+
+Result<void> writeFileAtomic(const std::string& path,
+                             const std::function<Result<void>(const std::string& tmpPath)>& write) {
+    if (path.empty()) return Error{"cannot write a file with an empty path"};
+    Result<std::string> tmp = createTmp(path);
+    if (!tmp) return tmp.error();
+    const std::string& tmpPath = tmp.value();
+    Result<void> r = write(tmpPath);
+    if (r) r = syncFile(path, tmpPath);
+    if (r && std::rename(tmpPath.c_str(), path.c_str()) != 0) r = osError(path, "cannot replace", errno);
+    if (!r) {
+        ::unlink(tmpPath.c_str());
+        return r;
+    }
+    syncFolder(path);
+    return r;
+}
+
+Result<void> writeTextFileAtomic(const std::string& path, std::string_view text) {
+    return writeFileAtomic(path, [&](const std::string& tmpPath) -> Result<void> {
+        const int fd = ::open(tmpPath.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+        if (fd < 0) return osError(path, "cannot write", errno);
+        size_t done = 0;
+        while (done < text.size()) {
+            const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) {
+                const int err = errno;
+                ::close(fd);
+                return osError(path, "cannot write", err);
+            }
+            done += static_cast<size_t>(n);
+        }
+        if (::close(fd) != 0) return osError(path, "cannot write", errno);
+        return {};
+    });
+}
+
+}  // namespace brume

@@ -1,0 +1,874 @@
+#include "scene_json.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <type_traits>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+
+namespace brume {
+namespace {
+
+using json = nlohmann::json;
+using ojson = nlohmann::ordered_json;
+
+constexpr int kVersion = 1;
+
+// ---------------------------------------------------------------------------------------------
+// Formatting for messages and docs.
+
+// Shortest digits that read back exactly; plain notation for everyday magnitudes, exponents for the
+// rest ("0.0001", "16384", "1e+06").
+std::string fmtNum(double v) {
+    char buf[400];
+    const double a = std::abs(v);
+    const bool plain = a == 0.0 || (a >= 1.0e-4 && a < 1.0e5);
+    const auto r = std::to_chars(buf, buf + sizeof buf, v, plain ? std::chars_format::fixed : std::chars_format::scientific);
+    return std::string(buf, r.ptr);
+}
+
+std::string withUnit(double v, const Setting& s) {
+    return s.unit.empty() ? fmtNum(v) : fmtNum(v) + " " + std::string(s.unit);
+}
+
+std::string rangeText(const Setting& s) {
+    std::string r = "[" + fmtNum(s.min) + ", " + fmtNum(s.max) + "]";
+    return s.unit.empty() ? r : r + " " + std::string(s.unit);
+}
+
+// The last component of a setting's path is its key in the object that holds it.
+std::string keyOf(const Setting& s) {
+    const size_t dot = s.path.rfind('.');
+    return std::string(dot == std::string_view::npos ? s.path : s.path.substr(dot + 1));
+}
+
+std::vector<std::string> choicesOf(const Setting& s) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (start <= s.choices.size()) {
+        const size_t bar = std::min(s.choices.find('|', start), s.choices.size());
+        out.emplace_back(s.choices.substr(start, bar - start));
+        start = bar + 1;
+    }
+    return out;
+}
+
+template <class List>
+std::string joinList(const List& items) {
+    std::string out;
+    for (const auto& item : items) out += (out.empty() ? "" : ", ") + std::string(item);
+    return out;
+}
+
+// How a wrong value is shown in a message: short, and never the whole of a big object.
+std::string describe(const json& v) {
+    if (v.is_object()) return "an object";
+    if (v.is_array()) return "an array of " + std::to_string(v.size()) + " values";
+    std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
+    return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+}
+
+std::string child(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+std::string indexed(const std::string& path, size_t i) { return path + "[" + std::to_string(i) + "]"; }
+
+}  // namespace
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Reading. The first error wins: later checks still run but cannot replace it, so the readers
+// below stay linear instead of testing a result after every key.
+
+struct Ctx {
+    const std::string& file;
+    std::optional<Error> error;
+
+    void fail(const std::string& path, const std::string& what) {
+        if (!error) error = Error{file + ": " + (path.empty() ? "" : path + ": ") + what};
+    }
+    bool failed() const { return error.has_value(); }
+};
+
+const json* findKey(const json& obj, const std::string& key) {
+    const auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+}
+
+// True when `v` is an object whose keys are all in `allowed`; `where` names the object in the
+// message ("a box volume").
+bool checkObject(Ctx& c, const json& v, const std::string& path, std::initializer_list<std::string_view> allowed,
+                 std::string_view where) {
+    if (!v.is_object()) {
+        c.fail(path, "expected an object, got " + describe(v));
+        return false;
+    }
+    for (const auto& item : v.items()) {
+        bool known = false;
+        for (std::string_view k : allowed) known = known || item.key() == k;
+        if (!known) {
+            c.fail(child(path, item.key()),
+                   "unknown key; allowed in " + std::string(where) + ": " + joinList(allowed));
+            return false;
+        }
+    }
+    return true;
+}
+
+// The range is checked on the float that will be stored as well as on the written value, so that a
+// float sitting on a bound (float(1e-4) < 1e-4) reads back after being written.
+bool inRange(double d, const Setting& s) {
+    if (d >= s.min && d <= s.max) return true;
+    if (std::abs(d) > 1.0e38) return false;
+    const float f = static_cast<float>(d);
+    return f == static_cast<float>(s.min) || f == static_cast<float>(s.max);
+}
+
+std::optional<double> asNumber(Ctx& c, const json& v, const std::string& path, const Setting& s) {
+    if (!v.is_number()) {
+        c.fail(path, "expected a number, got " + describe(v));
+        return std::nullopt;
+    }
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) {
+        c.fail(path, "expected a finite number, got " + v.dump());
+        return std::nullopt;
+    }
+    if (!inRange(d, s)) {
+        c.fail(path, withUnit(d, s) + " is out of range " + rangeText(s));
+        return std::nullopt;
+    }
+    return d;
+}
+
+std::optional<int> asInteger(Ctx& c, const json& v, const std::string& path, const Setting& s) {
+    if (!v.is_number()) {
+        c.fail(path, "expected an integer, got " + describe(v));
+        return std::nullopt;
+    }
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || d != std::floor(d)) {
+        c.fail(path, "expected an integer, got " + v.dump());
+        return std::nullopt;
+    }
+    if (d < s.min || d > s.max) {
+        c.fail(path, withUnit(d, s) + " is out of range " + rangeText(s));
+        return std::nullopt;
+    }
+    return static_cast<int>(d);
+}
+
+std::optional<glm::vec3> asVec3(Ctx& c, const json& v, const std::string& path, const Setting& s) {
+    if (!v.is_array() || v.size() != 3) {
+        c.fail(path, "expected an array of 3 numbers, got " + describe(v));
+        return std::nullopt;
+    }
+    glm::vec3 out;
+    for (size_t i = 0; i < 3; ++i) {
+        const std::optional<double> d = asNumber(c, v[i], indexed(path, i), s);
+        if (!d) return std::nullopt;
+        out[static_cast<int>(i)] = static_cast<float>(*d);
+    }
+    return out;
+}
+
+// Each read* leaves `out` (already holding the default) alone when the key is absent or invalid.
+void readFloat(Ctx& c, const json& obj, const std::string& path, const Setting& s, float& out) {
+    const std::string key = keyOf(s);
+    if (const json* v = findKey(obj, key))
+        if (const std::optional<double> d = asNumber(c, *v, child(path, key), s)) out = static_cast<float>(*d);
+}
+
+void readInt(Ctx& c, const json& obj, const std::string& path, const Setting& s, int& out) {
+    const std::string key = keyOf(s);
+    if (const json* v = findKey(obj, key))
+        if (const std::optional<int> i = asInteger(c, *v, child(path, key), s)) out = *i;
+}
+
+void readVec3(Ctx& c, const json& obj, const std::string& path, const Setting& s, glm::vec3& out) {
+    const std::string key = keyOf(s);
+    if (const json* v = findKey(obj, key))
+        if (const std::optional<glm::vec3> x = asVec3(c, *v, child(path, key), s)) out = *x;
+}
+
+void readBool(Ctx& c, const json& obj, const std::string& path, const Setting& s, bool& out) {
+    const std::string key = keyOf(s);
+    const json* v = findKey(obj, key);
+    if (!v) return;
+    if (v->is_boolean()) out = v->get<bool>();
+    else c.fail(child(path, key), "expected true or false, got " + describe(*v));
+}
+
+void readString(Ctx& c, const json& obj, const std::string& path, const Setting& s, std::string& out) {
+    const std::string key = keyOf(s);
+    const json* v = findKey(obj, key);
+    if (!v) return;
+    if (v->is_string()) out = v->get<std::string>();
+    else c.fail(child(path, key), "expected a string, got " + describe(*v));
+}
+
+// Choices are matched against the enum's toString(), so settings.h and scene.h cannot disagree
+// silently (the round-trip test would fail).
+template <class E, int N>
+std::optional<E> asEnum(Ctx& c, const json& v, const std::string& path, const Setting& s) {
+    const std::vector<std::string> choices = choicesOf(s);
+    if (!v.is_string()) {
+        c.fail(path, "expected a string (one of " + joinList(choices) + "), got " + describe(v));
+        return std::nullopt;
+    }
+    const std::string name = v.get<std::string>();
+    for (int i = 0; i < N; ++i)
+        if (name == toString(static_cast<E>(i))) return static_cast<E>(i);
+    c.fail(path, "unknown choice " + describe(v) + "; choices: " + joinList(choices));
+    return std::nullopt;
+}
+
+template <class E, int N>
+void readEnum(Ctx& c, const json& obj, const std::string& path, const Setting& s, E& out) {
+    const std::string key = keyOf(s);
+    if (const json* v = findKey(obj, key))
+        if (const std::optional<E> e = asEnum<E, N>(c, *v, child(path, key), s)) out = *e;
+}
+
+// The "type" of a list element: required, and decides which keys are allowed.
+template <class E, int N>
+std::optional<E> readType(Ctx& c, const json& obj, const std::string& path, const Setting& s) {
+    if (!obj.is_object()) {
+        c.fail(path, "expected an object, got " + describe(obj));
+        return std::nullopt;
+    }
+    const json* v = findKey(obj, "type");
+    if (!v) {
+        c.fail(child(path, "type"), "missing required key; choices: " + joinList(choicesOf(s)));
+        return std::nullopt;
+    }
+    return asEnum<E, N>(c, *v, child(path, "type"), s);
+}
+
+}  // namespace
+
+namespace {
+
+namespace st = settings;
+
+// Direction-like vectors are compared in double: positions up to 1e6 m keep their differences.
+glm::dvec3 toD(glm::vec3 v) { return glm::dvec3(v); }
+
+void readCamera(Ctx& c, const json& v, const std::string& path, Camera& cam) {
+    if (!checkObject(c, v, path, {"position", "target", "up", "fov_y_deg", "near", "far"}, "camera")) return;
+    readVec3(c, v, path, st::camera_position, cam.position);
+    readVec3(c, v, path, st::camera_target, cam.target);
+    readVec3(c, v, path, st::camera_up, cam.up);
+    readFloat(c, v, path, st::camera_fov_y, cam.fov_y_deg);
+    readFloat(c, v, path, st::camera_near, cam.near);
+    readFloat(c, v, path, st::camera_far, cam.far);
+    if (c.failed()) return;
+    if (!(cam.far > cam.near))
+        c.fail(child(path, "far"), withUnit(cam.far, st::camera_far) + " must exceed camera.near (" +
+                                       withUnit(cam.near, st::camera_near) + ")");
+    const glm::dvec3 view = toD(cam.target) - toD(cam.position);
+    if (view == glm::dvec3(0.0)) {
+        c.fail(child(path, "target"), "must differ from camera.position");
+        return;
+    }
+    const glm::dvec3 up = toD(cam.up);
+    // Below this sine the look-at basis loses most of its precision.
+    constexpr double kMinSine = 1.0e-3;
+    if (glm::length(up) == 0.0 || glm::length(glm::cross(glm::normalize(up), glm::normalize(view))) < kMinSine)
+        c.fail(child(path, "up"), "must not be zero or parallel to the view direction (target - position)");
+}
+
+void readRender(Ctx& c, const json& v, const std::string& path, RenderBlock& r) {
+    if (!checkObject(c, v, path, {"width", "height", "quality"}, "render")) return;
+    readInt(c, v, path, st::render_width, r.width);
+    readInt(c, v, path, st::render_height, r.height);
+    readEnum<Quality, 4>(c, v, path, st::render_quality, r.quality);
+}
+
+template <class T>
+void readOptional(Ctx& c, const json& v, const std::string& path, const Setting& s, std::optional<T>& out) {
+    if (!findKey(v, keyOf(s))) return;
+    T value{};
+    if constexpr (std::is_same_v<T, int>) readInt(c, v, path, s, value);
+    else readFloat(c, v, path, s, value);
+    if (!c.failed()) out = value;
+}
+
+void readFroxels(Ctx& c, const json& v, const std::string& path, FroxelOverrides& f) {
+    if (!checkObject(c, v, path, {"tile_px", "slices", "near", "far", "distribution"}, "froxels")) return;
+    readOptional(c, v, path, st::froxels_tile_px, f.tile_px);
+    readOptional(c, v, path, st::froxels_slices, f.slices);
+    readOptional(c, v, path, st::froxels_near, f.near);
+    readOptional(c, v, path, st::froxels_far, f.far);
+    readOptional(c, v, path, st::froxels_distribution, f.distribution);
+    if (!c.failed() && f.near && f.far && !(*f.far > *f.near))
+        c.fail(child(path, "far"), withUnit(*f.far, st::froxels_far) + " must exceed froxels.near (" +
+                                       withUnit(*f.near, st::froxels_near) + ")");
+}
+
+void readTemporal(Ctx& c, const json& v, const std::string& path, Temporal& t) {
+    if (!checkObject(c, v, path, {"enabled", "history_weight"}, "temporal")) return;
+    readBool(c, v, path, st::temporal_enabled, t.enabled);
+    readFloat(c, v, path, st::temporal_history_weight, t.history_weight);
+}
+
+void readTransform(Ctx& c, const json& obj, const std::string& objPath, Transform& t) {
+    const json* v = findKey(obj, "transform");
+    if (!v) return;
+    const std::string path = child(objPath, "transform");
+    if (!checkObject(c, *v, path, {"translation", "rotation_deg", "scale"}, "a transform")) return;
+    readVec3(c, *v, path, st::transform_translation, t.translation);
+    readVec3(c, *v, path, st::transform_rotation, t.rotation_deg);
+    readVec3(c, *v, path, st::transform_scale, t.scale);
+}
+
+void readMedium(Ctx& c, const json& obj, const std::string& objPath, Medium& m) {
+    const json* v = findKey(obj, "medium");
+    if (!v) return;
+    const std::string path = child(objPath, "medium");
+    if (!checkObject(c, *v, path, {"scattering", "absorption", "emission", "phase_g"}, "a medium")) return;
+    readVec3(c, *v, path, st::medium_scattering, m.scattering);
+    readVec3(c, *v, path, st::medium_absorption, m.absorption);
+    readVec3(c, *v, path, st::medium_emission, m.emission);
+    readFloat(c, *v, path, st::medium_phase_g, m.phase_g);
+}
+
+}  // namespace
+
+namespace {
+
+// Directions are stored normalized; one already unit within float precision is kept bit for bit
+// so that writing and reading again changes nothing.
+void normalizeDirection(Ctx& c, const std::string& path, glm::vec3& dir) {
+    const double len = glm::length(toD(dir));
+    if (len < 1.0e-6) {
+        c.fail(child(path, "direction"), "must not be zero");
+        return;
+    }
+    if (std::abs(len - 1.0) > 1.0e-6) dir = glm::vec3(toD(dir) / len);
+}
+
+std::optional<Light> readLight(Ctx& c, const json& v, const std::string& path) {
+    const std::optional<LightType> type = readType<LightType, 3>(c, v, path, st::light_type);
+    if (!type) return std::nullopt;
+    const bool ok = *type == LightType::Directional
+        ? checkObject(c, v, path, {"type", "name", "direction", "color", "intensity", "shadows", "fog_scale"},
+                      "a directional light")
+        : *type == LightType::Point
+        ? checkObject(c, v, path,
+                      {"type", "name", "position", "color", "intensity", "range", "shadows", "fog_scale"},
+                      "a point light")
+        : checkObject(c, v, path,
+                      {"type", "name", "position", "direction", "inner_deg", "outer_deg", "color", "intensity",
+                       "range", "shadows", "fog_scale"},
+                      "a spot light");
+    if (!ok) return std::nullopt;
+    Light l = makeLight(*type);
+    const bool local = *type != LightType::Directional;
+    readString(c, v, path, st::light_name, l.name);
+    readVec3(c, v, path, st::light_color, l.color);
+    readFloat(c, v, path, local ? st::light_intensity_local : st::light_intensity_directional, l.intensity);
+    readBool(c, v, path, local ? st::light_shadows_local : st::light_shadows_directional, l.shadows);
+    readFloat(c, v, path, st::light_fog_scale, l.fog_scale);
+    if (local) {
+        readVec3(c, v, path, st::light_position, l.position);
+        readFloat(c, v, path, st::light_range, l.range);
+    }
+    if (*type != LightType::Point) {
+        readVec3(c, v, path, st::light_direction, l.direction);
+        if (!c.failed()) normalizeDirection(c, path, l.direction);
+    }
+    if (*type == LightType::Spot) {
+        readFloat(c, v, path, st::light_inner_deg, l.inner_deg);
+        readFloat(c, v, path, st::light_outer_deg, l.outer_deg);
+        if (!c.failed() && l.inner_deg > l.outer_deg)
+            c.fail(child(path, "inner_deg"), withUnit(l.inner_deg, st::light_inner_deg) +
+                                                 " must not exceed outer_deg (" +
+                                                 withUnit(l.outer_deg, st::light_outer_deg) + ")");
+    }
+    return l;
+}
+
+bool checkVolumeKeys(Ctx& c, const json& v, const std::string& path, VolumeType type) {
+    switch (type) {
+        case VolumeType::Box:
+            return checkObject(c, v, path, {"type", "name", "transform", "edge_fade", "medium"}, "a box volume");
+        case VolumeType::Height:
+            return checkObject(c, v, path,
+                               {"type", "name", "base_height", "profile", "falloff", "transition_height", "medium"},
+                               "a height volume");
+        case VolumeType::Depth:
+            return checkObject(c, v, path, {"type", "name", "visibility_distance", "start_distance", "medium"},
+                               "a depth volume");
+        case VolumeType::Vdb:
+            return checkObject(c, v, path, {"type", "name", "file", "grid", "transform", "density_scale", "medium"},
+                               "a vdb volume");
+    }
+    return false;
+}
+
+void readVdbFile(Ctx& c, const json& v, const std::string& path, Volume& vol) {
+    if (!findKey(v, "file")) {
+        c.fail(child(path, "file"), "missing required key (the OpenVDB file of a vdb volume)");
+        return;
+    }
+    readString(c, v, path, st::volume_file, vol.file);
+    if (!c.failed() && vol.file.empty()) c.fail(child(path, "file"), "must not be empty");
+    readString(c, v, path, st::volume_grid, vol.grid);
+    if (!c.failed() && vol.grid.empty()) c.fail(child(path, "grid"), "must not be empty");
+}
+
+std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path) {
+    const std::optional<VolumeType> type = readType<VolumeType, 4>(c, v, path, st::volume_type);
+    if (!type || !checkVolumeKeys(c, v, path, *type)) return std::nullopt;
+    Volume vol;
+    vol.type = *type;
+    readString(c, v, path, st::volume_name, vol.name);
+    readMedium(c, v, path, vol.medium);
+    switch (*type) {
+        case VolumeType::Box:
+            readTransform(c, v, path, vol.transform);
+            readFloat(c, v, path, st::volume_edge_fade, vol.edge_fade);
+            break;
+        case VolumeType::Height:
+            readFloat(c, v, path, st::volume_base_height, vol.base_height);
+            readEnum<HeightProfile, 2>(c, v, path, st::volume_profile, vol.profile);
+            readFloat(c, v, path, st::volume_falloff, vol.falloff);
+            readFloat(c, v, path, st::volume_transition_height, vol.transition_height);
+            break;
+        case VolumeType::Depth:
+            readFloat(c, v, path, st::volume_visibility_distance, vol.visibility_distance);
+            readFloat(c, v, path, st::volume_start_distance, vol.start_distance);
+            break;
+        case VolumeType::Vdb:
+            readVdbFile(c, v, path, vol);
+            readTransform(c, v, path, vol.transform);
+            readFloat(c, v, path, st::volume_density_scale, vol.density_scale);
+            break;
+    }
+    return vol;
+}
+
+std::optional<Geometry> readGeometry(Ctx& c, const json& v, const std::string& path) {
+    const std::optional<GeometryType> type = readType<GeometryType, 3>(c, v, path, st::geometry_type);
+    if (!type) return std::nullopt;
+    const bool ok = *type == GeometryType::Plane
+        ? checkObject(c, v, path, {"type", "name", "height", "albedo", "emission"}, "a plane")
+        : *type == GeometryType::Box
+        ? checkObject(c, v, path, {"type", "name", "transform", "albedo", "emission"}, "a box")
+        : checkObject(c, v, path, {"type", "name", "center", "radius", "albedo", "emission"}, "a sphere");
+    if (!ok) return std::nullopt;
+    Geometry g;
+    g.type = *type;
+    readString(c, v, path, st::geometry_name, g.name);
+    readVec3(c, v, path, st::geometry_albedo, g.albedo);
+    readVec3(c, v, path, st::geometry_emission, g.emission);
+    if (*type == GeometryType::Plane) readFloat(c, v, path, st::geometry_height, g.height);
+    if (*type == GeometryType::Box) readTransform(c, v, path, g.transform);
+    if (*type == GeometryType::Sphere) {
+        readVec3(c, v, path, st::geometry_center, g.center);
+        readFloat(c, v, path, st::geometry_radius, g.radius);
+    }
+    return g;
+}
+
+template <class T, class ReadOne>
+void readList(Ctx& c, const json& v, const std::string& path, std::vector<T>& out, ReadOne readOne) {
+    if (!v.is_array()) {
+        c.fail(path, "expected an array, got " + describe(v));
+        return;
+    }
+    for (size_t i = 0; i < v.size() && !c.failed(); ++i)
+        if (std::optional<T> item = readOne(c, v[i], indexed(path, i))) out.push_back(std::move(*item));
+}
+
+}  // namespace
+
+namespace {
+
+// nlohmann keeps the last of two equal keys; a strict reader reports them instead. The callback
+// tracks the path of the object being parsed to name the duplicate.
+class DuplicateKeyFinder {
+public:
+    bool operator()(int, json::parse_event_t event, json& parsed) {
+        using E = json::parse_event_t;
+        if (event == E::object_start || event == E::array_start) stack_.push_back(Frame{event == E::array_start, {}, {}, 0});
+        if (event == E::object_end || event == E::array_end) {
+            stack_.pop_back();
+            if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+        }
+        if (event == E::value && !stack_.empty() && stack_.back().array) ++stack_.back().index;
+        if (event == E::key) {
+            Frame& f = stack_.back();
+            f.key = parsed.get<std::string>();
+            if (!f.keys.insert(f.key).second && !duplicate) duplicate = currentPath();
+        }
+        return true;
+    }
+    std::optional<std::string> duplicate;
+
+private:
+    struct Frame {
+        bool array;
+        std::set<std::string> keys;
+        std::string key;
+        size_t index;
+    };
+    std::string currentPath() const {
+        std::string path;
+        for (const Frame& f : stack_) path = f.array ? indexed(path, f.index) : child(path, f.key);
+        return path;
+    }
+    std::vector<Frame> stack_;
+};
+
+std::string lineColumn(std::string_view text, size_t offset) {
+    const size_t at = std::min(offset, text.size());
+    const std::string_view before = text.substr(0, at);
+    const size_t line = 1 + static_cast<size_t>(std::count(before.begin(), before.end(), '\n'));
+    const size_t lastNewline = before.rfind('\n');
+    const size_t column = lastNewline == std::string_view::npos ? at + 1 : at - lastNewline;
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+std::optional<json> parseJson(Ctx& c, std::string_view text) {
+    DuplicateKeyFinder dups;
+    try {
+        json root = json::parse(text.begin(), text.end(), std::ref(dups));
+        if (dups.duplicate) {
+            c.fail(*dups.duplicate, "duplicate key");
+            return std::nullopt;
+        }
+        return root;
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        const size_t colon = what.find(": ", what.find("column"));
+        if (colon != std::string::npos) what = what.substr(colon + 2);
+        c.fail(lineColumn(text, e.byte > 0 ? e.byte - 1 : 0), "JSON " + what);
+    } catch (const json::out_of_range& e) {
+        // Thrown for a number too large for a double (1e999): JSON has no Inf, so this is the only
+        // way a non-finite number reaches us. It carries no position; the token's first occurrence
+        // is the best guess.
+        const std::string what = e.what();
+        const size_t q0 = what.find('\'');
+        const size_t q1 = what.rfind('\'');
+        const std::string token = q0 < q1 ? what.substr(q0 + 1, q1 - q0 - 1) : std::string();
+        const size_t at = token.empty() ? std::string_view::npos : text.find(token);
+        c.fail(at == std::string_view::npos ? std::string() : lineColumn(text, at),
+               "number " + token + " is not finite (it overflows a double)");
+    }
+    return std::nullopt;
+}
+
+bool checkVersion(Ctx& c, const json& root) {
+    const json* v = findKey(root, "brume_scene");
+    if (!v) {
+        c.fail("brume_scene", "missing required key (the format version; this build reads " +
+                                  std::to_string(kVersion) + ")");
+        return false;
+    }
+    if (!v->is_number_integer() && !(v->is_number_float() && v->get<double>() == std::floor(v->get<double>()))) {
+        c.fail("brume_scene", "expected an integer, got " + describe(*v));
+        return false;
+    }
+    if (v->get<double>() != kVersion) {
+        c.fail("brume_scene", "unsupported version " + v->dump() + " (this build reads version " +
+                                  std::to_string(kVersion) + ")");
+        return false;
+    }
+    return true;
+}
+
+void readScene(Ctx& c, const json& root, Scene& s) {
+    if (!root.is_object()) {
+        c.fail("", "expected a JSON object at the top level, got " + describe(root));
+        return;
+    }
+    if (!checkVersion(c, root)) return;
+    if (!checkObject(c, root, "",
+                     {"brume_scene", "camera", "render", "froxels", "temporal", "ambient", "lights", "volumes",
+                      "geometry"},
+                     "a scene"))
+        return;
+    s.version = kVersion;
+    if (const json* v = findKey(root, "camera")) readCamera(c, *v, "camera", s.camera);
+    if (const json* v = findKey(root, "render")) readRender(c, *v, "render", s.render);
+    if (const json* v = findKey(root, "froxels")) readFroxels(c, *v, "froxels", s.froxels);
+    if (const json* v = findKey(root, "temporal")) readTemporal(c, *v, "temporal", s.temporal);
+    readVec3(c, root, "", st::ambient, s.ambient);
+    if (const json* v = findKey(root, "lights")) readList(c, *v, "lights", s.lights, readLight);
+    if (const json* v = findKey(root, "volumes")) readList(c, *v, "volumes", s.volumes, readVolume);
+    if (const json* v = findKey(root, "geometry")) readList(c, *v, "geometry", s.geometry, readGeometry);
+}
+
+Result<std::string> readTextFile(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return Error{path + ": cannot read: " + std::strerror(errno)};
+    std::string text;
+    char buf[65536];
+    size_t n = 0;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+    const int err = std::ferror(f) ? errno : 0;
+    std::fclose(f);
+    if (err != 0) return Error{path + ": cannot read: " + std::strerror(err)};
+    return text;
+}
+
+}  // namespace
+
+Result<Scene> parseScene(std::string_view text, const std::string& fileName) {
+    Ctx c{fileName, std::nullopt};
+    const std::optional<json> root = parseJson(c, text);
+    if (!root) return *c.error;
+    Scene s;
+    readScene(c, *root, s);
+    if (c.error) return *c.error;
+    return s;
+}
+
+Result<Scene> loadSceneFile(const std::string& path) {
+    Result<std::string> text = readTextFile(path);
+    if (!text) return text.error();
+    Result<Scene> scene = parseScene(text.value(), path);
+    if (!scene) return scene;
+    std::error_code ec;
+    const std::filesystem::path abs = std::filesystem::absolute(path, ec);
+    if (ec) return Error{path + ": cannot resolve the scene's folder: " + ec.message()};
+    scene.value().baseDir = abs.lexically_normal().parent_path().string();
+    return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing.
+
+namespace {
+
+// The fewest decimal digits that read back to the same float. The reader goes text -> double ->
+// float; in the rare case where that double rounding lands on a neighbour, the exact double value
+// of the float is written instead (17 digits, always exact).
+ojson num(float f) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, f);
+    double d = std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+    if (static_cast<float>(d) != f) d = static_cast<double>(f);
+    return d;
+}
+
+ojson vec(glm::vec3 v) { return ojson::array({num(v.x), num(v.y), num(v.z)}); }
+
+ojson transformJson(const Transform& t) {
+    ojson j;
+    j["translation"] = vec(t.translation);
+    j["rotation_deg"] = vec(t.rotation_deg);
+    j["scale"] = vec(t.scale);
+    return j;
+}
+
+ojson mediumJson(const Medium& m) {
+    ojson j;
+    j["scattering"] = vec(m.scattering);
+    j["absorption"] = vec(m.absorption);
+    j["emission"] = vec(m.emission);
+    j["phase_g"] = num(m.phase_g);
+    return j;
+}
+
+ojson lightJson(const Light& l) {
+    ojson j;
+    j["type"] = toString(l.type);
+    j["name"] = l.name;
+    if (l.type != LightType::Directional) j["position"] = vec(l.position);
+    if (l.type != LightType::Point) j["direction"] = vec(l.direction);
+    if (l.type == LightType::Spot) {
+        j["inner_deg"] = num(l.inner_deg);
+        j["outer_deg"] = num(l.outer_deg);
+    }
+    j["color"] = vec(l.color);
+    j["intensity"] = num(l.intensity);
+    if (l.type != LightType::Directional) j["range"] = num(l.range);
+    j["shadows"] = l.shadows;
+    j["fog_scale"] = num(l.fog_scale);
+    return j;
+}
+
+ojson volumeJson(const Volume& v) {
+    ojson j;
+    j["type"] = toString(v.type);
+    j["name"] = v.name;
+    switch (v.type) {
+        case VolumeType::Box:
+            j["transform"] = transformJson(v.transform);
+            j["edge_fade"] = num(v.edge_fade);
+            break;
+        case VolumeType::Height:
+            j["base_height"] = num(v.base_height);
+            j["profile"] = toString(v.profile);
+            j["falloff"] = num(v.falloff);
+            j["transition_height"] = num(v.transition_height);
+            break;
+        case VolumeType::Depth:
+            j["visibility_distance"] = num(v.visibility_distance);
+            j["start_distance"] = num(v.start_distance);
+            break;
+        case VolumeType::Vdb:
+            j["file"] = v.file;
+            j["grid"] = v.grid;
+            j["transform"] = transformJson(v.transform);
+            j["density_scale"] = num(v.density_scale);
+            break;
+    }
+    j["medium"] = mediumJson(v.medium);
+    return j;
+}
+
+ojson geometryJson(const Geometry& g) {
+    ojson j;
+    j["type"] = toString(g.type);
+    j["name"] = g.name;
+    if (g.type == GeometryType::Plane) j["height"] = num(g.height);
+    if (g.type == GeometryType::Box) j["transform"] = transformJson(g.transform);
+    if (g.type == GeometryType::Sphere) {
+        j["center"] = vec(g.center);
+        j["radius"] = num(g.radius);
+    }
+    j["albedo"] = vec(g.albedo);
+    j["emission"] = vec(g.emission);
+    return j;
+}
+
+ojson froxelsJson(const FroxelOverrides& f) {
+    ojson j = ojson::object();
+    if (f.tile_px) j["tile_px"] = *f.tile_px;
+    if (f.slices) j["slices"] = *f.slices;
+    if (f.near) j["near"] = num(*f.near);
+    if (f.far) j["far"] = num(*f.far);
+    if (f.distribution) j["distribution"] = num(*f.distribution);
+    return j;
+}
+
+template <class T, class ToJson>
+ojson listJson(const std::vector<T>& items, ToJson toJson) {
+    ojson j = ojson::array();
+    for (const T& item : items) j.push_back(toJson(item));
+    return j;
+}
+
+ojson sceneJson(const Scene& s) {
+    ojson j;
+    j["brume_scene"] = kVersion;
+    const Camera& cam = s.camera;
+    j["camera"] = {{"position", vec(cam.position)}, {"target", vec(cam.target)}, {"up", vec(cam.up)},
+                   {"fov_y_deg", num(cam.fov_y_deg)}, {"near", num(cam.near)}, {"far", num(cam.far)}};
+    j["render"] = {{"width", s.render.width}, {"height", s.render.height}, {"quality", toString(s.render.quality)}};
+    if (const ojson f = froxelsJson(s.froxels); !f.empty()) j["froxels"] = f;
+    j["temporal"] = {{"enabled", s.temporal.enabled}, {"history_weight", num(s.temporal.history_weight)}};
+    j["ambient"] = vec(s.ambient);
+    j["lights"] = listJson(s.lights, lightJson);
+    j["volumes"] = listJson(s.volumes, volumeJson);
+    j["geometry"] = listJson(s.geometry, geometryJson);
+    return j;
+}
+
+bool isScalar(const ojson& j) { return !j.is_object() && !j.is_array(); }
+
+// Like dump(2), but arrays of scalars stay on one line: a vec3 reads as [0.0, 1.5, 6.0].
+void emit(const ojson& j, int indent, std::string& out) {
+    const std::string pad(static_cast<size_t>(indent) + 2, ' ');
+    if (isScalar(j)) {
+        out += j.dump(-1, ' ', false, ojson::error_handler_t::replace);
+    } else if (j.empty()) {
+        out += j.is_object() ? "{}" : "[]";
+    } else if (j.is_array() && std::all_of(j.begin(), j.end(), isScalar)) {
+        out += "[";
+        for (size_t i = 0; i < j.size(); ++i) {
+            if (i > 0) out += ", ";
+            emit(j[i], indent, out);
+        }
+        out += "]";
+    } else {
+        out += j.is_object() ? "{\n" : "[\n";
+        size_t i = 0;
+        for (auto it = j.begin(); it != j.end(); ++it, ++i) {
+            out += pad;
+            if (j.is_object()) out += ojson(it.key()).dump(-1, ' ', false, ojson::error_handler_t::replace) + ": ";
+            emit(*it, indent + 2, out);
+            out += i + 1 < j.size() ? ",\n" : "\n";
+        }
+        out += std::string(static_cast<size_t>(indent), ' ') + (j.is_object() ? "}" : "]");
+    }
+}
+
+}  // namespace
+
+std::string sceneToJson(const Scene& scene) {
+    std::string out;
+    emit(sceneJson(scene), 0, out);
+    return out + "\n";
+}
+
+Result<void> saveSceneFile(const Scene& scene, const std::string& path) {
+    return writeTextFileAtomic(path, sceneToJson(scene));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Docs.
+
+namespace {
+
+std::string defaultText(const Setting& s) {
+    switch (s.kind) {
+        case SettingKind::Number: return fmtNum(s.def[0]);
+        case SettingKind::Integer: return std::to_string(s.i());
+        case SettingKind::Vec3: return "[" + fmtNum(s.def[0]) + ", " + fmtNum(s.def[1]) + ", " + fmtNum(s.def[2]) + "]";
+        case SettingKind::Bool: return s.b() ? "true" : "false";
+        case SettingKind::Choice: return choicesOf(s).at(static_cast<size_t>(s.i()));
+        case SettingKind::String: return "—";  // string defaults, where any, are in the help text
+    }
+    return "";
+}
+
+std::string rangeCell(const Setting& s) {
+    switch (s.kind) {
+        case SettingKind::Number:
+        case SettingKind::Integer: return "[" + fmtNum(s.min) + ", " + fmtNum(s.max) + "]";
+        case SettingKind::Vec3: return "[" + fmtNum(s.min) + ", " + fmtNum(s.max) + "] each";
+        case SettingKind::Bool: return "true, false";
+        case SettingKind::Choice: return joinList(choicesOf(s));
+        case SettingKind::String: return "any string";
+    }
+    return "";
+}
+
+// '|' separates cells, so it is escaped inside them (GFM also honours the escape in code spans).
+std::string cell(std::string_view text) {
+    std::string out;
+    for (char ch : text) out += ch == '|' ? std::string("\\|") : std::string(1, ch);
+    return out;
+}
+
+}  // namespace
+
+std::string settingsMarkdownTable() {
+    std::string out = "| key | unit | default | range | description |\n|---|---|---|---|---|\n";
+    for (const Setting* s : settings::kAll)
+        out += "| `" + cell(s->path) + "` | " + cell(s->unit) + " | " + cell(defaultText(*s)) + " | " +
+               cell(rangeCell(*s)) + " | " + cell(s->help) + " |\n";
+    return out;
+}
+
+}  // namespace brume

@@ -1,1 +1,484 @@
+// Scene format v1: defaults from core/settings.h, lossless round trip, atomic saving, and every
+// class of input error reported as "FILE: JSON-PATH: what is wrong".
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "io/atomic_file.h"
+#include "io/scene_json.h"
+
+namespace brume {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readAll(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// A fresh, empty folder per test, unique per process (other build folders may run the same test
+// at the same time), removed at the end of the test.
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& name)
+        : path(fs::temp_directory_path() / ("brume_test_scene_json_" + name + "_" + std::to_string(::getpid()))) {
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+};
+
+size_t fileCount(const fs::path& dir) {
+    return static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+// Every type of light, volume and geometry, with values away from the defaults, including floats
+// that have no short decimal form.
+Scene richScene() {
+    Scene s;
+    s.camera = {{1.0f / 3.0f, 2.5f, -7.25f}, {0.1f, 0.2f, 0.3f}, {0, 1, 0}, 47.5f, 0.05f, 250.0f};
+    s.render = {160, 90, Quality::Ultra};
+    s.froxels.tile_px = 4;
+    s.froxels.slices = 96;
+    s.froxels.near = 0.25f;
+    s.froxels.far = 80.0f;
+    s.froxels.distribution = 2.5f;
+    s.temporal = {false, 0.75f};
+    s.ambient = {0.01f, 0.02f, 0.03f};
+    Light sun = makeLight(LightType::Directional);
+    sun.name = "sun \"key\"";
+    sun.direction = glm::normalize(glm::vec3(0.3f, -0.9f, 0.1f));
+    sun.color = {1.0f, 0.9f, 0.8f};
+    sun.fog_scale = 2.0f;
+    Light point = makeLight(LightType::Point);
+    point.name = "lamp";
+    point.position = {1e5f, -3.0f, 1e-3f};
+    point.range = 12.0f;
+    point.shadows = true;
+    Light spot = makeLight(LightType::Spot);
+    spot.name = "spot";
+    spot.position = {0.0f, 4.0f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.0f));
+    spot.inner_deg = 10.0f;
+    spot.outer_deg = 35.5f;
+    s.lights = {sun, point, spot};
+
+    Volume box;
+    box.name = "box";
+    box.transform = {{1, 2, 3}, {10, 20, 30}, {2, 0.5f, 4}};
+    box.edge_fade = 0.3f;
+    box.medium = {{0.5f, 0.25f, 0.125f}, {0.01f, 0.02f, 0.03f}, {0.0f, 0.1f, 0.0f}, -0.4f};
+    Volume expo;
+    expo.type = VolumeType::Height;
+    expo.falloff = 0.7f;
+    expo.transition_height = 5.0f;
+    expo.base_height = -1.5f;
+    Volume linear = expo;
+    linear.profile = HeightProfile::Linear;
+    linear.name = "linear";
+    Volume depth;
+    depth.type = VolumeType::Depth;
+    depth.visibility_distance = 120.0f;
+    depth.start_distance = 3.0f;
+    Volume vdb;
+    vdb.type = VolumeType::Vdb;
+    vdb.file = "clouds/cloud.vdb";
+    vdb.grid = "density";
+    vdb.density_scale = 0.3f;
+    vdb.transform.scale = {0.01f, 0.01f, 0.01f};
+    s.volumes = {box, expo, linear, depth, vdb};
+
+    Geometry plane;
+    plane.height = -0.5f;
+    Geometry cube;
+    cube.type = GeometryType::Box;
+    cube.transform.translation = {0, 0.5f, 0};
+    cube.emission = {2, 2, 2};
+    Geometry sphere;
+    sphere.type = GeometryType::Sphere;
+    sphere.center = {1, 1, 1};
+    sphere.radius = 0.75f;
+    sphere.albedo = {0.9f, 0.1f, 0.1f};
+    s.geometry = {plane, cube, sphere};
+    return s;
+}
+
+std::string parseError(const std::string& text) {
+    Result<Scene> r = parseScene(text, "scene.json");
+    return r ? std::string("(parsed without error)") : r.error().message;
+}
+
+}  // namespace
+}  // namespace brume
+
+namespace brume {
+namespace {
+
+TEST(SceneJson, MinimalFileGetsEveryDefaultFromSettings) {
+    Result<Scene> r = parseScene(R"({"brume_scene": 1})", "min.json");
+    ASSERT_TRUE(r) << r.error().message;
+    const Scene& s = r.value();
+    EXPECT_EQ(s, Scene{});
+    EXPECT_EQ(s.camera.fov_y_deg, settings::camera_fov_y.f());
+    EXPECT_EQ(s.camera.position, glm::vec3(0.0f, 1.5f, 6.0f));
+    EXPECT_EQ(s.render.width, settings::render_width.i());
+    EXPECT_EQ(s.render.quality, Quality::High);
+    EXPECT_FALSE(s.froxels.slices.has_value());
+    EXPECT_TRUE(s.lights.empty() && s.volumes.empty() && s.geometry.empty());
+}
+
+TEST(SceneJson, LightDefaultsDependOnType) {
+    Result<Scene> r = parseScene(
+        R"({"brume_scene": 1, "lights": [{"type": "directional"}, {"type": "point"}, {"type": "spot"}]})", "l.json");
+    ASSERT_TRUE(r) << r.error().message;
+    const auto& l = r.value().lights;
+    ASSERT_EQ(l.size(), 3u);
+    EXPECT_EQ(l[0].intensity, settings::light_intensity_directional.f());
+    EXPECT_EQ(l[0].shadows, settings::light_shadows_directional.b());
+    EXPECT_EQ(l[1].intensity, settings::light_intensity_local.f());
+    EXPECT_EQ(l[1].shadows, settings::light_shadows_local.b());
+    EXPECT_EQ(l[2], makeLight(LightType::Spot));
+    EXPECT_NEAR(glm::length(l[0].direction), 1.0f, 1e-6f);
+}
+
+TEST(SceneJson, DirectionIsNormalizedOnLoad) {
+    Result<Scene> r = parseScene(R"({"brume_scene": 1, "lights": [{"type": "spot", "direction": [0, -0.5, 0.5]}]})",
+                                 "d.json");
+    ASSERT_TRUE(r) << r.error().message;
+    const glm::vec3 d = r.value().lights[0].direction;
+    EXPECT_NEAR(d.y, -std::sqrt(0.5f), 1e-6f);
+    EXPECT_NEAR(d.z, std::sqrt(0.5f), 1e-6f);
+}
+
+TEST(SceneJson, HeightVolumeKeepsBothProfileParameters) {
+    const char* text = R"({"brume_scene": 1, "volumes": [
+        {"type": "height", "profile": "linear", "falloff": 0.25, "transition_height": 7}]})";
+    Result<Scene> r = parseScene(text, "h.json");
+    ASSERT_TRUE(r) << r.error().message;
+    const Volume& v = r.value().volumes[0];
+    EXPECT_EQ(v.profile, HeightProfile::Linear);
+    EXPECT_EQ(v.falloff, 0.25f);
+    EXPECT_EQ(v.transition_height, 7.0f);
+    const std::string out = sceneToJson(r.value());
+    EXPECT_NE(out.find("\"falloff\": 0.25"), std::string::npos) << out;
+    EXPECT_NE(out.find("\"transition_height\": 7"), std::string::npos) << out;
+}
+
+TEST(SceneJson, IntegralFloatIsAcceptedAsInteger) {
+    Result<Scene> r = parseScene(R"({"brume_scene": 1.0, "render": {"width": 320.0}})", "i.json");
+    ASSERT_TRUE(r) << r.error().message;
+    EXPECT_EQ(r.value().render.width, 320);
+}
+
+TEST(SceneJson, RichSceneRoundTripsExactly) {
+    const Scene s = richScene();
+    const std::string text = sceneToJson(s);
+    Result<Scene> r = parseScene(text, "rich.json");
+    ASSERT_TRUE(r) << r.error().message << "\n" << text;
+    EXPECT_EQ(r.value(), s) << text;
+    EXPECT_EQ(sceneToJson(r.value()), text);  // stable: writing again changes no byte
+}
+
+TEST(SceneJson, FloatsSurviveRoundTripAtAwkwardValues) {
+    // Bounds, values without short decimals and float neighbours of round numbers.
+    const float values[] = {1e-4f, 0.1f, 1.0f / 3.0f, 123456.789f, std::nextafter(1.0f, 2.0f),
+                            std::nextafter(0.1f, 0.0f), 9.99999e5f, 1e6f, 7.0e-4f};
+    for (float v : values) {
+        Scene s;
+        s.camera.near = std::min(v, 1e4f);
+        s.camera.far = 1e7f;
+        s.ambient = glm::vec3(v);
+        s.camera.position = glm::vec3(v, -v, 0.5f * v);
+        Result<Scene> r = parseScene(sceneToJson(s), "f.json");
+        ASSERT_TRUE(r) << v << ": " << r.error().message;
+        EXPECT_EQ(r.value(), s) << v;
+    }
+}
+
+// Random valid scenes: every float drawn from its setting's range, either uniformly or with random
+// mantissa bits (log-uniform), so that most values have no short decimal form.
+class RandomScene {
+public:
+    explicit RandomScene(unsigned seed) : rng_(seed) {}
+
+    float value(const Setting& s) {
+        const double lo = s.min, hi = s.max;
+        double v = std::uniform_real_distribution<double>(lo, hi)(rng_);
+        if (coin() && lo >= 0.0 && hi > 0.0) {
+            const double l0 = std::log(std::max(lo, 1e-6)), l1 = std::log(hi);
+            v = std::exp(std::uniform_real_distribution<double>(l0, l1)(rng_));
+        }
+        return std::clamp(static_cast<float>(v), static_cast<float>(lo), static_cast<float>(hi));
+    }
+    glm::vec3 vec(const Setting& s) { return {value(s), value(s), value(s)}; }
+    glm::vec3 unit() { return glm::normalize(glm::vec3(value(settings::light_direction), -0.5f, value(settings::light_direction))); }
+    bool coin() { return std::uniform_int_distribution<int>(0, 1)(rng_) == 1; }
+    int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
+
+    Scene scene() {
+        Scene s;
+        s.camera.position = 0.5f * vec(settings::camera_position);  // room for the target beside it
+        s.camera.target = s.camera.position + glm::vec3(1.0f, value(settings::camera_up), 0.5f);
+        s.camera.fov_y_deg = value(settings::camera_fov_y);
+        s.camera.near = value(settings::camera_near);
+        s.camera.far = std::max(value(settings::camera_far), s.camera.near * 2.0f);
+        s.render = {pick(4096) + 1, pick(4096) + 1, static_cast<Quality>(pick(4))};
+        if (coin()) s.froxels.distribution = value(settings::froxels_distribution);
+        if (coin()) s.froxels.slices = pick(1024) + 1;
+        s.temporal = {coin(), value(settings::temporal_history_weight)};
+        s.ambient = vec(settings::ambient);
+        for (int i = pick(4); i > 0; --i) s.lights.push_back(light());
+        for (int i = pick(6); i > 0; --i) s.volumes.push_back(volume());
+        for (int i = pick(4); i > 0; --i) s.geometry.push_back(geometry());
+        return s;
+    }
+
+private:
+    Light light() {
+        Light l = makeLight(static_cast<LightType>(pick(3)));
+        l.name = "light " + std::to_string(pick(100));
+        l.color = vec(settings::light_color);
+        l.intensity = value(settings::light_intensity_local);
+        l.shadows = coin();
+        l.fog_scale = value(settings::light_fog_scale);
+        if (l.type != LightType::Directional) {
+            l.position = vec(settings::light_position);
+            l.range = value(settings::light_range);
+        }
+        if (l.type != LightType::Point) l.direction = unit();
+        if (l.type == LightType::Spot) {
+            l.outer_deg = value(settings::light_outer_deg);
+            l.inner_deg = std::min(value(settings::light_inner_deg), l.outer_deg);
+        }
+        return l;
+    }
+    Transform transform() {
+        return {vec(settings::transform_translation), vec(settings::transform_rotation), vec(settings::transform_scale)};
+    }
+    Volume volume() {
+        Volume v;
+        v.type = static_cast<VolumeType>(pick(4));
+        v.medium = {vec(settings::medium_scattering), vec(settings::medium_absorption), vec(settings::medium_emission),
+                    value(settings::medium_phase_g)};
+        if (v.type == VolumeType::Box || v.type == VolumeType::Vdb) v.transform = transform();
+        if (v.type == VolumeType::Box) v.edge_fade = value(settings::volume_edge_fade);
+        if (v.type == VolumeType::Height) {
+            v.profile = static_cast<HeightProfile>(pick(2));
+            v.base_height = value(settings::volume_base_height);
+            v.falloff = value(settings::volume_falloff);
+            v.transition_height = value(settings::volume_transition_height);
+        }
+        if (v.type == VolumeType::Depth) {
+            v.visibility_distance = value(settings::volume_visibility_distance);
+            v.start_distance = value(settings::volume_start_distance);
+        }
+        if (v.type == VolumeType::Vdb) {
+            v.file = "dir/f\\" + std::to_string(pick(100)) + ".vdb";
+            v.density_scale = value(settings::volume_density_scale);
+        }
+        return v;
+    }
+    Geometry geometry() {
+        Geometry g;
+        g.type = static_cast<GeometryType>(pick(3));
+        if (g.type == GeometryType::Plane) g.height = value(settings::geometry_height);
+        if (g.type == GeometryType::Box) g.transform = transform();
+        if (g.type == GeometryType::Sphere) {
+            g.center = vec(settings::geometry_center);
+            g.radius = value(settings::geometry_radius);
+        }
+        g.albedo = vec(settings::geometry_albedo);
+        g.emission = vec(settings::geometry_emission);
+        return g;
+    }
+    std::mt19937 rng_;
+};
+
+TEST(SceneJson, RandomValidScenesRoundTripExactly) {
+    RandomScene gen(12345u);
+    for (int i = 0; i < 300; ++i) {
+        const Scene s = gen.scene();
+        const std::string text = sceneToJson(s);
+        Result<Scene> r = parseScene(text, "random.json");
+        ASSERT_TRUE(r) << "scene " << i << ": " << r.error().message << "\n" << text;
+        ASSERT_EQ(r.value(), s) << "scene " << i << "\n" << text;
+    }
+}
+
+TEST(SceneJson, LoadSaveLoadIsIdenticalAndSetsBaseDir) {
+    const TempDir tmp("load_save");
+    const fs::path& dir = tmp.path;
+    const fs::path a = dir / "a.json";
+    ASSERT_TRUE(saveSceneFile(richScene(), a.string()));
+    Result<Scene> first = loadSceneFile(a.string());
+    ASSERT_TRUE(first) << first.error().message;
+    EXPECT_EQ(first.value().baseDir, fs::absolute(dir).lexically_normal().string());
+    const fs::path b = dir / "b.json";
+    ASSERT_TRUE(saveSceneFile(first.value(), b.string()));
+    Result<Scene> second = loadSceneFile(b.string());
+    ASSERT_TRUE(second) << second.error().message;
+    EXPECT_EQ(second.value(), first.value());
+    EXPECT_EQ(first.value(), richScene());
+    EXPECT_EQ(readAll(a), readAll(b));
+    EXPECT_EQ(fileCount(dir), 2u);  // no temporaries left
+}
+
+TEST(SceneJson, FailedWriteLeavesOldFileAndNoTemporary) {
+    const TempDir tmp("atomic");
+    const fs::path& dir = tmp.path;
+    const fs::path path = dir / "scene.json";
+    ASSERT_TRUE(saveSceneFile(Scene{}, path.string()));
+    const std::string before = readAll(path);
+    Result<void> r = writeFileAtomic(path.string(), [](const std::string& tmp) -> Result<void> {
+        std::ofstream(tmp) << "{\"brume_scene\": 1, \"cam";  // half written, then the writer fails
+        return Error{"disk full"};
+    });
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message, "disk full");
+    EXPECT_EQ(readAll(path), before);
+    EXPECT_EQ(fileCount(dir), 1u);
+}
+
+TEST(SceneJson, SaveOverADirectoryFailsWithoutLeftovers) {
+    const TempDir tmp("over_dir");
+    const fs::path& dir = tmp.path;
+    fs::create_directories(dir / "taken" / "inside");
+    Result<void> r = saveSceneFile(Scene{}, (dir / "taken").string());
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().message.find((dir / "taken").string()), std::string::npos) << r.error().message;
+    EXPECT_TRUE(fs::is_directory(dir / "taken" / "inside"));
+    EXPECT_EQ(fileCount(dir), 1u);
+}
+
+TEST(SceneJson, SaveIntoMissingFolderNamesPathAndReason) {
+    const TempDir tmp("missing");
+    const fs::path path = tmp.path / "no" / "such" / "scene.json";
+    Result<void> r = saveSceneFile(Scene{}, path.string());
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message, path.string() + ": cannot write: No such file or directory");
+}
+
+TEST(SceneJson, UnreadableFileNamesPathAndReason) {
+    const TempDir tmp("unreadable");
+    const fs::path& dir = tmp.path;
+    const std::string missing = (dir / "nope.json").string();
+    Result<Scene> r = loadSceneFile(missing);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message, missing + ": cannot read: No such file or directory");
+    Result<Scene> d = loadSceneFile(dir.string());
+    ASSERT_FALSE(d);
+    EXPECT_EQ(d.error().message, dir.string() + ": cannot read: Is a directory");
+}
+
+}  // namespace
+}  // namespace brume
+
+namespace brume {
+namespace {
+
+struct ErrorCase {
+    const char* text;
+    const char* message;
+};
+
+// One case per class of error; the whole message is compared because its wording is the interface.
+const ErrorCase kErrorCases[] = {
+    {"{\"brume_scene\": 1,\n  \"camera\": {]\n}", "scene.json: line 2, column 14: JSON syntax error while parsing object key - unexpected ']'; expected string literal"},
+    {"", "scene.json: line 1, column 1: JSON syntax error while parsing value - unexpected end of input; expected '[', '{', or a literal"},
+    {"[1, 2]", "scene.json: expected a JSON object at the top level, got an array of 2 values"},
+    {"{}", "scene.json: brume_scene: missing required key (the format version; this build reads 1)"},
+    {R"({"brume_scene": 2})", "scene.json: brume_scene: unsupported version 2 (this build reads version 1)"},
+    {R"({"brume_scene": "1"})", "scene.json: brume_scene: expected an integer, got \"1\""},
+    {R"({"brume_scene": 1, "fog": {}})",
+     "scene.json: fog: unknown key; allowed in a scene: brume_scene, camera, render, froxels, temporal, ambient, lights, volumes, geometry"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "box", "falloff": 1}]})",
+     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, medium"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "box", "medium": {"albedo": 1}}]})",
+     "scene.json: volumes[0].medium.albedo: unknown key; allowed in a medium: scattering, absorption, emission, phase_g"},
+    {R"({"brume_scene": 1, "camera": {"fov_y_deg": "wide"}})", "scene.json: camera.fov_y_deg: expected a number, got \"wide\""},
+    {R"({"brume_scene": 1, "render": {"width": true}})", "scene.json: render.width: expected an integer, got true"},
+    {R"({"brume_scene": 1, "render": {"width": 640.5}})", "scene.json: render.width: expected an integer, got 640.5"},
+    {R"({"brume_scene": 1, "ambient": [1, 2]})", "scene.json: ambient: expected an array of 3 numbers, got an array of 2 values"},
+    {R"({"brume_scene": 1, "ambient": [1, null, 2]})", "scene.json: ambient[1]: expected a number, got null"},
+    {R"({"brume_scene": 1, "temporal": {"enabled": 1}})", "scene.json: temporal.enabled: expected true or false, got 1"},
+    {R"({"brume_scene": 1, "lights": [{"type": "point", "name": 7}]})", "scene.json: lights[0].name: expected a string, got 7"},
+    {R"({"brume_scene": 1, "camera": []})", "scene.json: camera: expected an object, got an array of 0 values"},
+    {R"({"brume_scene": 1, "lights": {}})", "scene.json: lights: expected an array, got an object"},
+    {R"({"brume_scene": 1, "camera": {"near": 1e999}})", "scene.json: line 1, column 39: number 1e999 is not finite (it overflows a double)"},
+    {R"({"brume_scene": 1, "volumes": [{}, {"type": "box", "medium": {"phase_g": 1.5}}]})",
+     "scene.json: volumes[0].type: missing required key; choices: box, height, depth, vdb"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "box"}, {"type": "box"}, {"type": "box", "medium": {"phase_g": 1.5}}]})",
+     "scene.json: volumes[2].medium.phase_g: 1.5 is out of range [-1, 1]"},
+    {R"({"brume_scene": 1, "camera": {"fov_y_deg": 180}})", "scene.json: camera.fov_y_deg: 180 deg is out of range [1, 179] deg"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "box", "medium": {"scattering": [0, -0.5, 0]}}]})",
+     "scene.json: volumes[0].medium.scattering[1]: -0.5 1/m is out of range [0, 1e+09] 1/m"},
+    {R"({"brume_scene": 1, "render": {"height": 0}})", "scene.json: render.height: 0 px is out of range [1, 16384] px"},
+    {R"({"brume_scene": 1, "render": {"quality": "extreme"}})",
+     "scene.json: render.quality: unknown choice \"extreme\"; choices: low, medium, high, ultra"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "fog"}]})", "scene.json: volumes[0].type: unknown choice \"fog\"; choices: box, height, depth, vdb"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "vdb"}]})", "scene.json: volumes[0].file: missing required key (the OpenVDB file of a vdb volume)"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": ""}]})", "scene.json: volumes[0].file: must not be empty"},
+    {R"({"brume_scene": 1, "camera": {"near": 5, "far": 5}})", "scene.json: camera.far: 5 m must exceed camera.near (5 m)"},
+    {R"({"brume_scene": 1, "camera": {"position": [1, 2, 3], "target": [1, 2, 3]}})", "scene.json: camera.target: must differ from camera.position"},
+    {R"({"brume_scene": 1, "camera": {"position": [0, 5, 0], "target": [0, 0, 0]}})",
+     "scene.json: camera.up: must not be zero or parallel to the view direction (target - position)"},
+    {R"({"brume_scene": 1, "camera": {"up": [0, 0, 0]}})",
+     "scene.json: camera.up: must not be zero or parallel to the view direction (target - position)"},
+    {R"({"brume_scene": 1, "lights": [{"type": "directional", "direction": [0, 0, 0]}]})", "scene.json: lights[0].direction: must not be zero"},
+    {R"({"brume_scene": 1, "lights": [{"type": "spot", "inner_deg": 40, "outer_deg": 30}]})",
+     "scene.json: lights[0].inner_deg: 40 deg must not exceed outer_deg (30 deg)"},
+    {R"({"brume_scene": 1, "lights": [{"type": "point", "direction": [0, -1, 0]}]})",
+     "scene.json: lights[0].direction: unknown key; allowed in a point light: type, name, position, color, intensity, range, shadows, fog_scale"},
+    {R"({"brume_scene": 1, "froxels": {"near": 10, "far": 2}})", "scene.json: froxels.far: 2 m must exceed froxels.near (10 m)"},
+    {R"({"brume_scene": 1, "froxels": {"slices": 0}})", "scene.json: froxels.slices: 0 is out of range [1, 1024]"},
+    {R"({"brume_scene": 1, "camera": {"fov_y_deg": 30, "fov_y_deg": 40}})", "scene.json: camera.fov_y_deg: duplicate key"},
+    {R"({"brume_scene": 1, "geometry": [{"type": "plane"}, {"type": "sphere", "radius": 0}]})",
+     "scene.json: geometry[1].radius: 0 m is out of range [0.0001, 1e+06] m"},
+};
+
+TEST(SceneJson, EveryErrorNamesFilePathAndProblem) {
+    for (const ErrorCase& c : kErrorCases) EXPECT_EQ(parseError(c.text), c.message) << "input: " << c.text;
+}
+
+TEST(SceneJson, DuplicateKeyInsideListIsLocated) {
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "lights": [{"type": "point"}, {"type": "spot", "name": "a", "name": "b"}]})"),
+              "scene.json: lights[1].name: duplicate key");
+}
+
+TEST(SceneJson, DocsTableMatchesSettings) {
+    const std::string doc = readAll(BRUME_SOURCE_DIR "/docs/scene-format.md");
+    const std::string begin = "<!-- settings-table:begin -->\n";
+    const std::string end = "<!-- settings-table:end -->";
+    const size_t b = doc.find(begin);
+    const size_t e = doc.find(end);
+    ASSERT_NE(b, std::string::npos) << "docs/scene-format.md lacks the begin marker";
+    ASSERT_NE(e, std::string::npos) << "docs/scene-format.md lacks the end marker";
+    ASSERT_LT(b, e);
+    EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()), settingsMarkdownTable())
+        << "regenerate the table in docs/scene-format.md from settingsMarkdownTable()";
+}
+
+TEST(SceneJson, DocsTableListsEverySetting) {
+    const std::string table = settingsMarkdownTable();
+    for (const Setting* s : settings::kAll) {
+        std::string key(s->path);
+        for (size_t p = key.find('|'); p != std::string::npos; p = key.find('|', p + 2)) key.replace(p, 1, "\\|");
+        EXPECT_NE(table.find("| `" + key + "` |"), std::string::npos) << s->path;
+    }
+}
+
+}  // namespace
+}  // namespace brume
