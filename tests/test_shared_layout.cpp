@@ -1,1 +1,192 @@
+// The structs in shaders/shared/ cross the CPU/GPU boundary as raw bytes: their C++ (glm) layout
+// must equal the GLSL std140 (uniform) and std430 (storage) layouts. glslang compiles a shader
+// that declares every struct in both layouts and its reflection reports each member's offset,
+// which must equal offsetof on the C++ side; block sizes (and so array strides) must equal sizeof.
 #include <gtest/gtest.h>
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+
+#include <cstddef>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "shaders/shared/bindings.h"
+#include "shaders/shared/brume.h"
+
+using namespace brume;
+
+namespace {
+
+// Resolves #include "x.h" from shaders/shared/, like glslangValidator -I in the build.
+class SharedIncluder : public glslang::TShader::Includer {
+public:
+    IncludeResult* includeLocal(const char* name, const char*, size_t) override {
+        std::ifstream in(std::string(BRUME_SOURCE_DIR) + "/shaders/shared/" + name);
+        if (!in) return nullptr;
+        std::stringstream ss;
+        ss << in.rdbuf();
+        auto* text = new std::string(ss.str());
+        return new IncludeResult(name, text->data(), text->size(), text);
+    }
+    IncludeResult* includeSystem(const char* name, const char* from, size_t depth) override {
+        return includeLocal(name, from, depth);
+    }
+    void releaseInclude(IncludeResult* r) override {
+        if (!r) return;
+        delete static_cast<std::string*>(r->userData);
+        delete r;
+    }
+};
+
+constexpr const char* kShader = R"(#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "brume.h"
+#include "bindings.h"
+layout(std140, binding = 0) uniform F140 { FrameUniforms f140; };
+layout(std140, binding = 1) uniform V140 { VolumeData v140; };
+layout(std140, binding = 2) uniform L140 { LightData l140; };
+layout(std430, binding = 3) buffer F430 { FrameUniforms f430; };
+layout(std430, binding = 4) buffer V430 { VolumeData v430[2]; };
+layout(std430, binding = 5) buffer L430 { LightData l430[2]; };
+layout(std430, binding = 6) buffer C430 { FroxelCounters c430; };
+layout(local_size_x = 1) in;
+// Every block must be live to be reflected; EShReflectionAllBlockVariables then lists all members.
+void main() {
+    c430.litFroxels = uint(f140.counts.x + v140.kind.x + l140.kind.x + f430.counts.x + v430[0].kind.x + l430[0].kind.x);
+}
+)";
+
+struct Reflected {
+    std::map<std::string, int> offsets;  // member name -> byte offset
+    std::map<std::string, int> blockSizes;
+    std::string log;
+};
+
+Reflected reflect() {
+    Reflected out;
+    glslang::InitializeProcess();
+    {
+        glslang::TShader shader(EShLangCompute);
+        shader.setStrings(&kShader, 1);
+        shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+        shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_1);
+        shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_3);
+        SharedIncluder includer;
+        glslang::TProgram program;
+        if (!shader.parse(GetDefaultResources(), 450, false, EShMsgDefault, includer)) {
+            out.log = shader.getInfoLog();
+        } else {
+            program.addShader(&shader);
+            if (!program.link(EShMsgDefault) || !program.buildReflection(EShReflectionAllBlockVariables)) {
+                out.log = program.getInfoLog();
+            }
+            for (int i = 0; i < program.getNumUniformVariables(); ++i)
+                out.offsets[program.getUniform(i).name] = program.getUniform(i).offset;
+            for (int i = 0; i < program.getNumBufferVariables(); ++i) {
+                out.offsets[program.getBufferVariable(i).name] = program.getBufferVariable(i).offset;
+            }
+            for (int i = 0; i < program.getNumUniformBlocks(); ++i)
+                out.blockSizes[program.getUniformBlock(i).name] = program.getUniformBlock(i).size;
+            for (int i = 0; i < program.getNumBufferBlocks(); ++i)
+                out.blockSizes[program.getBufferBlock(i).name] = program.getBufferBlock(i).size;
+        }
+    }
+    glslang::FinalizeProcess();
+    return out;
+}
+
+const Reflected& reflected() {
+    static const Reflected r = reflect();
+    return r;
+}
+
+// Offset of `member` inside `prefix` ("f140." or "v430[0]."), or -1 (with the names seen).
+int offsetOf(const std::string& prefix, const std::string& member) {
+    const auto& m = reflected().offsets;
+    const auto it = m.find(prefix + member);
+    return it == m.end() ? -1 : it->second;
+}
+
+std::string seenNames() {
+    std::string s;
+    for (const auto& [name, offset] : reflected().offsets) s += name + "@" + std::to_string(offset) + " ";
+    return s;
+}
+
+#define EXPECT_MEMBER(prefix, Struct, member) \
+    EXPECT_EQ(offsetOf(prefix, #member), static_cast<int>(offsetof(shd::Struct, member))) << prefix << #member << "; seen: " << seenNames()
+
+void expectFrameUniforms(const std::string& p) {
+    EXPECT_MEMBER(p, FrameUniforms, viewFromWorld);
+    EXPECT_MEMBER(p, FrameUniforms, worldFromView);
+    EXPECT_MEMBER(p, FrameUniforms, clipFromView);
+    EXPECT_MEMBER(p, FrameUniforms, clipFromWorld);
+    EXPECT_MEMBER(p, FrameUniforms, cameraPosition);
+    EXPECT_MEMBER(p, FrameUniforms, ambient);
+    EXPECT_MEMBER(p, FrameUniforms, projection);
+    EXPECT_MEMBER(p, FrameUniforms, froxelRange);
+    EXPECT_MEMBER(p, FrameUniforms, froxelDims);
+    EXPECT_MEMBER(p, FrameUniforms, counts);
+    EXPECT_MEMBER(p, FrameUniforms, jitter);
+}
+
+void expectVolumeData(const std::string& p) {
+    EXPECT_MEMBER(p, VolumeData, localFromWorld);
+    EXPECT_MEMBER(p, VolumeData, sigmaS_g);
+    EXPECT_MEMBER(p, VolumeData, sigmaA);
+    EXPECT_MEMBER(p, VolumeData, emission);
+    EXPECT_MEMBER(p, VolumeData, params);
+    EXPECT_MEMBER(p, VolumeData, kind);
+    EXPECT_MEMBER(p, VolumeData, worldMin);
+    EXPECT_MEMBER(p, VolumeData, worldMax);
+}
+
+void expectLightData(const std::string& p) {
+    EXPECT_MEMBER(p, LightData, positionRange);
+    EXPECT_MEMBER(p, LightData, direction);
+    EXPECT_MEMBER(p, LightData, intensity);
+    EXPECT_MEMBER(p, LightData, spot);
+    EXPECT_MEMBER(p, LightData, kind);
+}
+
+TEST(SharedLayout, GlslCompilesWithTheSharedHeaders) { EXPECT_TRUE(reflected().log.empty()) << reflected().log; }
+
+TEST(SharedLayout, FrameUniformsStd140AndStd430MatchCpp) {
+    expectFrameUniforms("f140.");
+    expectFrameUniforms("f430.");
+    EXPECT_EQ(reflected().blockSizes.at("F140"), static_cast<int>(sizeof(shd::FrameUniforms)));
+    EXPECT_EQ(reflected().blockSizes.at("F430"), static_cast<int>(sizeof(shd::FrameUniforms)));
+}
+
+TEST(SharedLayout, VolumeDataStd140AndStd430MatchCpp) {
+    expectVolumeData("v140.");
+    expectVolumeData("v430[0].");
+    EXPECT_EQ(reflected().blockSizes.at("V140"), static_cast<int>(sizeof(shd::VolumeData)));
+    // Two elements: the block size is twice the array stride.
+    EXPECT_EQ(reflected().blockSizes.at("V430"), static_cast<int>(2 * sizeof(shd::VolumeData)));
+}
+
+TEST(SharedLayout, LightDataStd140AndStd430MatchCpp) {
+    expectLightData("l140.");
+    expectLightData("l430[0].");
+    EXPECT_EQ(reflected().blockSizes.at("L140"), static_cast<int>(sizeof(shd::LightData)));
+    EXPECT_EQ(reflected().blockSizes.at("L430"), static_cast<int>(2 * sizeof(shd::LightData)));
+}
+
+TEST(SharedLayout, FroxelCountersStd430MatchCpp) {
+    EXPECT_MEMBER("c430.", FroxelCounters, litFroxels);
+    EXPECT_MEMBER("c430.", FroxelCounters, skippedFroxels);
+    EXPECT_EQ(reflected().blockSizes.at("C430"), static_cast<int>(sizeof(shd::FroxelCounters)));
+}
+
+// The sizes the header comments promise (and that the GPU buffers are sized with).
+TEST(SharedLayout, SizesAreTheDocumentedOnes) {
+    EXPECT_EQ(sizeof(shd::VolumeData), 176u);
+    EXPECT_EQ(sizeof(shd::LightData), 80u);
+    EXPECT_EQ(sizeof(shd::FrameUniforms), 368u);
+}
+
+}  // namespace

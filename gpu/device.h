@@ -1,0 +1,87 @@
+// The Vulkan instance, the chosen physical device, its logical device and queue, debug names and
+// labels (VK_EXT_debug_utils when available) and the validation messenger.
+//
+// Device choice: the name given in GpuOptions::device, else the BRUME_DEVICE environment variable
+// (case-insensitive substring of the device name), else the best kind present: discrete, then
+// integrated, then virtual, then CPU (lavapipe). Validation: GpuOptions::validation or
+// BRUME_VALIDATION=1; warnings and errors are collected so tests can assert there are none.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/result.h"
+
+namespace brume::gpu {
+
+struct GpuOptions {
+    std::string device;       // substring of the device name; empty = BRUME_DEVICE or automatic
+    bool validation = false;  // also enabled by BRUME_VALIDATION=1
+};
+
+class Device {
+public:
+    static Result<std::unique_ptr<Device>> create(const GpuOptions& options);
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    VkDevice vk() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    const std::string& name() const { return name_; }
+    bool validationEnabled() const { return validation_; }
+    // 0 when the queue cannot write timestamps.
+    double timestampPeriodNs() const { return timestampPeriodNs_; }
+    uint32_t timestampValidBits() const { return timestampValidBits_; }
+    const VkPhysicalDeviceLimits& limits() const { return limits_; }
+
+    // Debug names and labels are no-ops without VK_EXT_debug_utils.
+    void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
+    template <class H>
+    void name(H handle, VkObjectType type, const std::string& n) const {
+        setName(type, reinterpret_cast<uint64_t>(handle), n);
+    }
+    void beginLabel(VkCommandBuffer cmd, const char* label) const;
+    void endLabel(VkCommandBuffer cmd) const;
+
+    Result<uint32_t> memoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const;
+    bool supportsFormat(VkFormat format, VkFormatFeatureFlags optimalFeatures) const;
+
+    // Validation warnings and errors received so far (thread-safe).
+    std::vector<std::string> validationMessages() const;
+    void recordMessage(std::string message);
+
+private:
+    Device() = default;
+    Result<void> createInstance(bool validation);
+    Result<void> pickPhysicalDevice(const std::string& wanted);
+    Result<void> createLogicalDevice();
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    std::string name_;
+    bool validation_ = false;
+    bool debugUtils_ = false;
+    double timestampPeriodNs_ = 0.0;
+    uint32_t timestampValidBits_ = 0;
+    VkPhysicalDeviceMemoryProperties memory_{};
+    VkPhysicalDeviceLimits limits_{};
+
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+    PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;
+    PFN_vkCmdEndDebugUtilsLabelEXT endLabel_ = nullptr;
+
+    mutable std::mutex messagesMutex_;
+    std::vector<std::string> messages_;
+};
+
+}  // namespace brume::gpu

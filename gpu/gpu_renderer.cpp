@@ -1,0 +1,164 @@
+#include "gpu_renderer.h"
+
+#include <array>
+#include <chrono>
+#include <cstring>
+
+#include "core/compile.h"
+#include "geometry_mesh.h"
+#include "renderer_state.h"
+#include "shaders/shared/bindings.h"
+#include "vk_check.h"
+
+namespace brume::gpu {
+
+Result<void> GpuRenderer::State::createCommands() {
+    VkCommandPoolCreateInfo poolInfo = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = device->queueFamily();
+    VkCommandPool pool = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateCommandPool(device->vk(), &poolInfo, nullptr, &pool), "create the command pool");
+    commandPool = CommandPoolOwner(device->vk(), pool);
+    device->name(pool, VK_OBJECT_TYPE_COMMAND_POOL, "brume command pool");
+    VkCommandBufferAllocateInfo alloc = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+    alloc.commandPool = pool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    BRUME_VK(vkAllocateCommandBuffers(device->vk(), &alloc, &cmd), "allocate the command buffer");
+    device->name(cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, "froxel frame");
+    VkFenceCreateInfo fenceInfo = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+    VkFence f = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateFence(device->vk(), &fenceInfo, nullptr, &f), "create a fence");
+    fence = FenceOwner(device->vk(), f);
+    device->name(f, VK_OBJECT_TYPE_FENCE, "frame done");
+    return {};
+}
+
+Result<void> GpuRenderer::State::createPasses() {
+    const VkFormatFeatureFlags storageAttachment =
+        VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
+    if (!device->supportsFormat(kVolumeFormat, storageAttachment) ||
+        !device->supportsFormat(VK_FORMAT_R32_SFLOAT, storageAttachment) ||
+        !device->supportsFormat(VK_FORMAT_D32_SFLOAT, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+        return Error{"The Vulkan device " + device->name() +
+                     " cannot use 32-bit float images as storage and render targets, which brume needs."};
+    Result<DescriptorBindings> b = createDescriptorBindings(*device);
+    if (!b) return b.error();
+    bindings = std::move(b.value());
+    const VkPipelineLayout layout = bindings.pipelineLayout.get();
+    Result<GeometryPass> g = GeometryPass::create(*device, layout);
+    if (!g) return g.error();
+    geometry = std::move(g.value());
+    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&light, &createLightPass},
+                                std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
+        Result<ComputePass> p = create(*device, layout);
+        if (!p) return p.error();
+        *pass = std::move(p.value());
+    }
+    Result<PassTimer> t = PassTimer::create(*device, kMaxPasses);
+    if (!t) return t.error();
+    timer = std::move(t.value());
+    return {};
+}
+
+Result<std::unique_ptr<GpuRenderer>> GpuRenderer::create(const GpuOptions& options) {
+    auto s = std::make_unique<State>();
+    Result<std::unique_ptr<Device>> d = Device::create(options);
+    if (!d) return d.error();
+    s->device = std::move(d.value());
+    BRUME_TRY(s->createCommands());
+    BRUME_TRY(s->createPasses());
+    return std::unique_ptr<GpuRenderer>(new GpuRenderer(std::move(s)));
+}
+
+GpuRenderer::GpuRenderer(std::unique_ptr<State> state) : s_(std::move(state)) {}
+
+GpuRenderer::~GpuRenderer() {
+    if (s_ && s_->device) vkDeviceWaitIdle(s_->device->vk());
+}
+
+std::string GpuRenderer::deviceName() const { return s_->device->name(); }
+bool GpuRenderer::validationEnabled() const { return s_->device->validationEnabled(); }
+std::vector<std::string> GpuRenderer::validationMessages() const { return s_->device->validationMessages(); }
+
+}  // namespace brume::gpu
+
+namespace brume::gpu {
+namespace {
+
+Result<void> checkLimits(const Device& device, int width, int height, glm::ivec3 dims) {
+    const VkPhysicalDeviceLimits& l = device.limits();
+    if (static_cast<uint32_t>(std::max(width, height)) > l.maxImageDimension2D)
+        return Error{"The image is " + std::to_string(width) + "x" + std::to_string(height) + " pixels but " +
+                     device.name() + " allows at most " + std::to_string(l.maxImageDimension2D) + " per side."};
+    if (static_cast<uint32_t>(std::max(dims.x, std::max(dims.y, dims.z))) > l.maxImageDimension3D)
+        return Error{"The froxel grid is " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                     std::to_string(dims.z) + " but " + device.name() + " allows at most " +
+                     std::to_string(l.maxImageDimension3D) + " per side; use a larger tile_px or fewer slices."};
+    return {};
+}
+
+std::vector<glm::vec4> readVolume(const Buffer& b, glm::ivec3 dims) {
+    const size_t n = static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * static_cast<size_t>(dims.z);
+    const auto* p = static_cast<const glm::vec4*>(b.mapped);
+    return std::vector<glm::vec4>(p, p + n);
+}
+
+}  // namespace
+
+Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& request, bool readBackVolumes) {
+    if (request.width < 1 || request.height < 1)
+        return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
+                     std::to_string(request.height) + "."};
+    const CompiledScene cs = compileScene(scene);
+    const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
+    const shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
+    const glm::ivec3 dims(frame.froxelDims);
+    const glm::ivec2 size(request.width, request.height);
+    BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
+    const std::vector<GeometryVertex> vertices = tessellateGeometry(scene.geometry, frame);
+
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex)));
+    if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
+    FrameResources& r = s_->res;
+    std::memcpy(r.frame.mapped, &frame, sizeof(frame));
+    if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
+    if (!cs.lights.empty()) std::memcpy(r.lights.mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
+    if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
+
+    BRUME_VK(vkResetCommandBuffer(s_->cmd, 0), "reset the command buffer");
+    VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    BRUME_VK(vkBeginCommandBuffer(s_->cmd, &begin), "begin recording the frame");
+    s_->recordFrame(static_cast<uint32_t>(vertices.size()), cs.ambient, frame.projection.w, readBackVolumes);
+    BRUME_VK(vkEndCommandBuffer(s_->cmd), "record the frame");
+    Result<double> wall = s_->submitAndWait();
+    if (!wall) return wall.error();
+
+    GpuRender out;
+    out.wallMs = wall.value();
+    out.dims = dims;
+    out.image = Image(size.x, size.y);
+    const auto* pixels = static_cast<const glm::vec4*>(r.outputReadback.mapped);
+    for (size_t i = 0; i < out.image.pixels.size(); ++i) out.image.pixels[i] = glm::vec3(pixels[i]);
+    const auto* counters = static_cast<const shd::FroxelCounters*>(r.counters.mapped);
+    out.litFroxels = counters->litFroxels;
+    out.skippedFroxels = counters->skippedFroxels;
+    Result<std::vector<PassTiming>> timings = s_->timer.read();
+    if (!timings) return timings.error();
+    out.passes = std::move(timings.value());
+    if (readBackVolumes) {
+        FroxelVolumes& v = out.volumes;
+        v.dims = dims;
+        v.frame = frame;
+        std::array<std::vector<glm::vec4>*, 6> dst{&v.mediaScatteringG, &v.mediaExtinction, &v.mediaEmission,
+                                                    &v.source, &v.integratedScattering, &v.integratedTransmittance};
+        for (size_t i = 0; i < dst.size(); ++i) *dst[i] = readVolume(s_->volumeReadback[i], dims);
+        v.litFroxels = out.litFroxels;
+        v.skippedFroxels = out.skippedFroxels;
+    }
+    if (request.progress) request.progress(1.0f);
+    return out;
+}
+
+}  // namespace brume::gpu

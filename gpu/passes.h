@@ -1,0 +1,46 @@
+// The froxel passes, one file each (gpu/pass_*.cpp, shaders/*.comp|vert|frag), in execution order.
+// Each records into a command buffer whose descriptor set already points at FrameResources; the
+// caller places the barriers between them (after each pass's start timestamp, see timing.h).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "frame_resources.h"
+#include "pipeline.h"
+
+namespace brume::gpu {
+
+// Geometry: planes, boxes and spheres rasterized with a depth test and shaded like
+// core/geometry.cpp shadeSurface without shadows.
+// in: frame, lights, vertices. out: sceneColor (sky = ambient), sceneDepth (sky = camera far).
+class GeometryPass {
+public:
+    static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
+    // Call whenever the screen targets are recreated.
+    Result<void> attach(const Device& device, const FrameResources& r);
+    void record(VkCommandBuffer cmd, const DescriptorBindings& b, const FrameResources& r, uint32_t vertexCount,
+                glm::vec3 ambient, float cameraFar) const;
+
+private:
+    RenderPassOwner renderPass_;
+    PipelineOwner pipeline_;
+    FramebufferOwner framebuffer_;
+};
+
+// Voxelize. in: frame, volumes. out: mediaScatteringG, mediaExtinction, mediaEmission.
+Result<ComputePass> createVoxelizePass(const Device& device, VkPipelineLayout layout);
+void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
+
+// Light. in: frame, lights, media*. out: source, counters.
+Result<ComputePass> createLightPass(const Device& device, VkPipelineLayout layout);
+void recordLight(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
+
+// Integrate. in: frame, source, mediaExtinction. out: integratedScattering, integratedTransmittance.
+Result<ComputePass> createIntegratePass(const Device& device, VkPipelineLayout layout);
+void recordIntegrate(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
+
+// Composite. in: frame, integrated*, sceneColor, sceneDepth. out: output.
+Result<ComputePass> createCompositePass(const Device& device, VkPipelineLayout layout);
+void recordComposite(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec2 size);
+
+}  // namespace brume::gpu

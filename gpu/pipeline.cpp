@@ -1,0 +1,150 @@
+#include "pipeline.h"
+
+#include <array>
+
+#include "frame_resources.h"
+#include "shaders/shared/bindings.h"
+#include "spirv.h"
+#include "vk_check.h"
+
+namespace brume::gpu {
+namespace {
+
+VkDescriptorType bindingType(int binding) {
+    if (binding == shd::BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    if (binding <= shd::BINDING_COUNTERS) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+}
+
+}  // namespace
+
+Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
+    DescriptorBindings b;
+    std::array<VkDescriptorSetLayoutBinding, shd::BINDING_COUNT> bindings{};
+    for (int i = 0; i < shd::BINDING_COUNT; ++i) {
+        // Only the buffers reach the geometry pass: devices may allow as few as 4 storage images
+        // per graphics stage.
+        const VkShaderStageFlags stages = bindingType(i) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                              ? VK_SHADER_STAGE_COMPUTE_BIT
+                                              : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
+                                                    VK_SHADER_STAGE_FRAGMENT_BIT;
+        bindings[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), bindingType(i), 1, stages, nullptr};
+    }
+    VkDescriptorSetLayoutCreateInfo layoutInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
+    layoutInfo.pBindings = bindings.data();
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateDescriptorSetLayout(device.vk(), &layoutInfo, nullptr, &setLayout), "create the descriptor set layout");
+    b.setLayout = DescriptorSetLayoutOwner(device.vk(), setLayout);
+    device.name(setLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "froxel bindings layout");
+
+    VkPipelineLayoutCreateInfo plInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    plInfo.setLayoutCount = 1;
+    plInfo.pSetLayouts = &setLayout;
+    VkPipelineLayout pl = VK_NULL_HANDLE;
+    BRUME_VK(vkCreatePipelineLayout(device.vk(), &plInfo, nullptr, &pl), "create the pipeline layout");
+    b.pipelineLayout = PipelineLayoutOwner(device.vk(), pl);
+    device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "froxel pipeline layout");
+
+    const std::array<VkDescriptorPoolSize, 3> sizes{{
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 4)},
+    }};
+    VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    poolInfo.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateDescriptorPool(device.vk(), &poolInfo, nullptr, &pool), "create the descriptor pool");
+    b.pool = DescriptorPoolOwner(device.vk(), pool);
+    device.name(pool, VK_OBJECT_TYPE_DESCRIPTOR_POOL, "froxel descriptor pool");
+
+    VkDescriptorSetAllocateInfo alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    alloc.descriptorPool = pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &setLayout;
+    BRUME_VK(vkAllocateDescriptorSets(device.vk(), &alloc, &b.set), "allocate the descriptor set");
+    device.name(b.set, VK_OBJECT_TYPE_DESCRIPTOR_SET, "froxel bindings");
+    return b;
+}
+
+void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
+    const std::array<const Buffer*, 4> buffers{&r.frame, &r.volumes, &r.lights, &r.counters};
+    const std::array<const GpuImage*, shd::BINDING_COUNT - 4> images{
+        &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
+        &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};
+    std::array<VkDescriptorBufferInfo, 4> bufferInfos{};
+    std::array<VkDescriptorImageInfo, images.size()> imageInfos{};
+    std::array<VkWriteDescriptorSet, shd::BINDING_COUNT> writes{};
+    for (int i = 0; i < shd::BINDING_COUNT; ++i) {
+        VkWriteDescriptorSet& w = writes[static_cast<size_t>(i)];
+        w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        w.dstSet = set;
+        w.dstBinding = static_cast<uint32_t>(i);
+        w.descriptorCount = 1;
+        w.descriptorType = bindingType(i);
+        if (i < 4) {
+            bufferInfos[static_cast<size_t>(i)] = {buffers[static_cast<size_t>(i)]->buffer.get(), 0, VK_WHOLE_SIZE};
+            w.pBufferInfo = &bufferInfos[static_cast<size_t>(i)];
+        } else {
+            const size_t k = static_cast<size_t>(i - 4);
+            imageInfos[k] = {VK_NULL_HANDLE, images[k]->view.get(), VK_IMAGE_LAYOUT_GENERAL};
+            w.pImageInfo = &imageInfos[k];
+        }
+    }
+    vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* name) {
+    const std::span<const uint32_t> words = embeddedSpirv(name);
+    if (words.empty()) return Error{std::string("The shader ") + name + " is missing from this build of brume."};
+    VkShaderModuleCreateInfo info = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+    info.codeSize = words.size_bytes();
+    info.pCode = words.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateShaderModule(device.vk(), &info, nullptr, &module), std::string("load the shader ") + name);
+    device.name(module, VK_OBJECT_TYPE_SHADER_MODULE, name);
+    return ShaderModuleOwner(device.vk(), module);
+}
+
+Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const char* shader,
+                                      const char* label) {
+    Result<ShaderModuleOwner> module = createShaderModule(device, shader);
+    if (!module) return module.error();
+    VkComputePipelineCreateInfo info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    info.stage = vkStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module.value().get();
+    info.stage.pName = "main";
+    info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateComputePipelines(device.vk(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+             std::string("create the ") + label + " pipeline");
+    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, std::string(label) + " pipeline");
+    ComputePass pass;
+    pass.pipeline = PipelineOwner(device.vk(), pipeline);
+    pass.label = label;
+    return pass;
+}
+
+void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bindings.pipelineLayout.get(), 0, 1, &bindings.set,
+                            0, nullptr);
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
+                   VkAccessFlags dstAccess) {
+    VkMemoryBarrier b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+void computeToComputeBarrier(VkCommandBuffer cmd) {
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+}  // namespace brume::gpu

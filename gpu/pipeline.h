@@ -1,0 +1,47 @@
+// What every pass shares: the one descriptor set (bindings: shaders/shared/bindings.h), its
+// pipeline layout, shader modules from the embedded SPIR-V, compute pipelines and barriers.
+#pragma once
+
+#include <string>
+
+#include "resources.h"
+
+namespace brume::gpu {
+
+struct FrameResources;
+
+struct DescriptorBindings {
+    DescriptorSetLayoutOwner setLayout;
+    PipelineLayoutOwner pipelineLayout;
+    DescriptorPoolOwner pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;  // freed with the pool
+};
+
+Result<DescriptorBindings> createDescriptorBindings(const Device& device);
+
+// Points every binding at the current resources; call after any of them is recreated.
+void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r);
+
+// name: a shader file name from shaders/, e.g. "voxelize.comp".
+Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* name);
+
+// A compute pass: one pipeline and its label for debuggers and timings.
+struct ComputePass {
+    PipelineOwner pipeline;
+    const char* label = "";
+};
+
+Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const char* shader,
+                                      const char* label);
+
+void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings);
+
+// Global memory barrier: writes `srcAccess` by `src` stages before it become visible to `dstAccess`
+// by `dst` stages after it.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
+                   VkAccessFlags dstAccess);
+
+// The barrier between two compute passes: the earlier one's storage writes feed the later one.
+void computeToComputeBarrier(VkCommandBuffer cmd);
+
+}  // namespace brume::gpu

@@ -1,0 +1,46 @@
+// Private to gpu/: what GpuRenderer holds, split over gpu_renderer.cpp (creation, render) and
+// gpu_frame.cpp (resources that follow the frame size, command recording, submission).
+#pragma once
+
+#include <array>
+
+#include "core/compile.h"
+#include "frame_resources.h"
+#include "gpu_renderer.h"
+#include "passes.h"
+#include "timing.h"
+
+namespace brume::gpu {
+
+inline constexpr VkFormat kVolumeFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr uint32_t kMaxPasses = 8;
+inline constexpr VkImageUsageFlags kVolumeUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+
+// Declaration order is destruction order reversed: the device outlives everything it owns.
+struct GpuRenderer::State {
+    std::unique_ptr<Device> device;
+    CommandPoolOwner commandPool;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // freed with the pool
+    FenceOwner fence;
+    DescriptorBindings bindings;
+    GeometryPass geometry;
+    ComputePass voxelize, light, integrate, composite;
+    PassTimer timer;
+    FrameResources res;
+    std::array<Buffer, 6> volumeReadback;
+
+    Result<void> createCommands();
+    Result<void> createPasses();
+    Result<void> ensureBuffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
+                              const char* name, bool& dirty);
+    Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
+    Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
+    Result<void> ensureVolumeReadback(glm::ivec3 dims);
+    Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes);
+    void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes);
+    void recordReadback(bool readBackVolumes);
+    Result<double> submitAndWait();
+};
+
+
+}  // namespace brume::gpu

@@ -1,0 +1,34 @@
+#include "vk_check.h"
+
+namespace brume::gpu {
+
+const char* describeVkResult(VkResult r) {
+    switch (r) {
+        case VK_SUCCESS: return "it succeeded";
+        case VK_NOT_READY: return "the result is not ready yet";
+        case VK_TIMEOUT: return "the operation timed out";
+        case VK_INCOMPLETE: return "the returned list was incomplete";
+        case VK_ERROR_OUT_OF_HOST_MEMORY: return "the computer ran out of memory";
+        case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "the GPU ran out of memory (try a lower quality or a smaller image)";
+        case VK_ERROR_INITIALIZATION_FAILED: return "the driver failed to initialize";
+        case VK_ERROR_DEVICE_LOST: return "the GPU stopped responding (device lost; a driver crash or a timeout)";
+        case VK_ERROR_MEMORY_MAP_FAILED: return "GPU memory could not be mapped for the CPU";
+        case VK_ERROR_LAYER_NOT_PRESENT: return "a requested layer is not installed (the validation layer needs the Vulkan SDK or vulkan-validationlayers)";
+        case VK_ERROR_EXTENSION_NOT_PRESENT: return "a required extension is not supported";
+        case VK_ERROR_FEATURE_NOT_PRESENT: return "a required device feature is not supported";
+        case VK_ERROR_INCOMPATIBLE_DRIVER: return "no compatible Vulkan driver is installed (check the driver or VK_ICD_FILENAMES)";
+        case VK_ERROR_TOO_MANY_OBJECTS: return "too many objects of one kind were created";
+        case VK_ERROR_FORMAT_NOT_SUPPORTED: return "an image format is not supported by this device";
+        case VK_ERROR_FRAGMENTED_POOL: return "a descriptor pool is fragmented";
+        case VK_ERROR_OUT_OF_POOL_MEMORY: return "a descriptor pool ran out of space";
+        case VK_ERROR_INVALID_EXTERNAL_HANDLE: return "an external handle is invalid";
+        case VK_ERROR_FRAGMENTATION: return "GPU memory is too fragmented";
+        default: return "the driver reported an unknown error";
+    }
+}
+
+Error vkError(const std::string& action, VkResult r) {
+    return Error{"Vulkan could not " + action + ": " + describeVkResult(r) + "."};
+}
+
+}  // namespace brume::gpu

@@ -1,0 +1,65 @@
+// Pass 4: fog over the rasterized scene, read from the integrated volume with the shared lookup
+// rule (shd::integratedLookup; core: sampleIntegrated / compositeRow), then continued in closed
+// form from the froxel far to the surface (shared/distant.h; core: accumulateDistantFog).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define BRUME_FROXEL_IMAGES
+#include "resources.glsl"
+
+layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
+
+Accumulated integratedAt(int x, int y, int s) {
+    Accumulated a;
+    a.scattering = imageLoad(integratedScattering, ivec3(x, y, s)).rgb;
+    a.transmittance = imageLoad(integratedTransmittance, ivec3(x, y, s)).rgb;
+    return a;
+}
+
+Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
+    IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
+    Accumulated byEntry[2];
+    for (int e = 0; e < 2; ++e) {
+        int s = k.entries[e];
+        Accumulated row0 = mixAccumulated(integratedAt(k.columns.x, k.columns.y, s),
+                                          integratedAt(k.columns.z, k.columns.y, s), k.weights.x);
+        Accumulated row1 = mixAccumulated(integratedAt(k.columns.x, k.columns.w, s),
+                                          integratedAt(k.columns.z, k.columns.w, s), k.weights.x);
+        byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
+    }
+    Accumulated entries = mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
+    return mixAccumulated(emptyAccumulated(), entries, k.entryWeight);
+}
+
+// Height and depth fog along the camera ray between ray distances s0 and s1, lit by the
+// directional lights and the ambient.
+Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
+    if (!(s1 > s0)) return a;
+    DistantSegment seg = emptyDistantSegment();
+    for (int i = 0; i < frame.counts.z; ++i) {
+        float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, s0, s1);
+        if (len <= 0.0f) continue;
+        vec3 light = frame.ambient.rgb;
+        for (int j = 0; j < frame.counts.w; ++j) light += distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w);
+        seg = addDistantVolume(seg, volumes[i], len, light);
+    }
+    return accumulateDistant(a, seg);
+}
+
+void main() {
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(px, frame.counts.xy))) return;
+    vec3 background = imageLoad(sceneColor, px).rgb;
+    float viewDepth = imageLoad(sceneDepth, px).r;
+    vec2 pixel = vec2(px) + vec2(0.5f);
+    Accumulated fog = sampleIntegrated(pixel, viewDepth);
+    float froxelFar = frame.froxelRange.y;
+    if (viewDepth > froxelFar) {
+        // viewRay has z = -1: ray distance = view depth * its length.
+        vec3 viewRay = viewRayFromPixel(pixel, frame);
+        float rayPerDepth = length(viewRay);
+        vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
+        fog = accumulateDistantFog(fog, dir, froxelFar * rayPerDepth, viewDepth * rayPerDepth);
+    }
+    vec3 color = compositeFog(background, fog);
+    imageStore(outputImage, px, vec4(color, 1.0f));
+}

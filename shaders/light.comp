@@ -1,0 +1,30 @@
+// Pass 2: source S = sigma_s (lights' in-scattering + ambient) + emission, no shadows yet
+// (core: lightRow). Froxels with sigma_t = 0 skip lighting and hold S = emission: nothing scatters
+// where nothing extinguishes, but a purely emissive medium still glows.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define BRUME_FROXEL_IMAGES
+#include "resources.glsl"
+
+layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+
+void main() {
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
+    vec3 sigmaT = imageLoad(mediaExtinction, id).rgb;
+    if (sigmaT == vec3(0.0f)) {
+        imageStore(sourceImage, id, vec4(imageLoad(mediaEmission, id).rgb, 0.0f));
+        atomicAdd(counters.skippedFroxels, 1u);
+        return;
+    }
+    atomicAdd(counters.litFroxels, 1u);
+    vec4 scatteringG = imageLoad(mediaScatteringG, id);
+    vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
+    vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
+    vec3 perSigmaS = frame.ambient.rgb;
+    for (int i = 0; i < frame.counts.w; ++i) {
+        perSigmaS += inScatterPerSigmaS(lights[i], evalLight(lights[i], p), viewDir, scatteringG.a);
+    }
+    vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
+    imageStore(sourceImage, id, vec4(source, 0.0f));
+}

@@ -1,0 +1,26 @@
+// Pass 1: media of every analytic volume at each froxel's sample point (core: voxelizeRow).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define BRUME_FROXEL_IMAGES
+#include "resources.glsl"
+
+layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+
+MediaSample mediaAt(vec3 p) {
+    MediaSample m = emptyMedia();
+    for (int i = 0; i < frame.counts.z; ++i) {
+        if (!insideBounds(volumes[i], p)) continue;
+        m = addMedium(m, volumes[i], analyticDensity(volumes[i], p, frame.cameraPosition.xyz));
+    }
+    return m;
+}
+
+void main() {
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
+    vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
+    MediaSample m = mediaAt(p);
+    imageStore(mediaScatteringG, id, vec4(m.sigmaS, mediaPhaseG(m)));
+    imageStore(mediaExtinction, id, vec4(m.sigmaT, 0.0f));
+    imageStore(mediaEmission, id, vec4(m.emission, 0.0f));
+}

@@ -1,0 +1,339 @@
+// The Vulkan froxel renderer against its oracle, the CPU froxel renderer (core/froxel_renderer.cpp),
+// on lavapipe or any GPU. Every test runs with the validation layer and requires it to stay silent.
+//
+// Tolerance: both sides evaluate the same shaders/shared/ formulas in float on the same inputs;
+// the differences are float reassociation and exp/pow precision in the driver's compiled shaders
+// (~1e-6 relative per froxel, compounded over <= 48 slices) plus, with geometry, pixels whose
+// silhouette differs between rasterization and the CPU's exact ray query (a tessellated sphere,
+// edges on pixel centres). 1% relative mean absolute error (the bar) leaves room for those
+// while still catching any wrong term: a missing light, a wrong phase g or an off-by-one slice
+// changes the error by far more than 1%.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <numeric>
+
+#include "core/render.h"
+#include "gpu/gpu_renderer.h"
+
+using namespace brume;
+using namespace brume::gpu;
+
+namespace {
+
+constexpr double kTolerance = 0.01;
+
+Scene baseScene() {
+    Scene s;
+    s.camera.position = {0.0f, 1.5f, 6.0f};
+    s.camera.target = {0.0f, 0.5f, 0.0f};
+    s.camera.far = 40.0f;
+    s.froxels.tile_px = 8;
+    s.froxels.slices = 48;
+    s.froxels.far = 30.0f;
+    s.ambient = {0.05f, 0.06f, 0.08f};
+    return s;
+}
+
+RenderRequest smallRequest() {
+    RenderRequest r;
+    r.width = 160;
+    r.height = 90;
+    r.threads = 2;
+    return r;
+}
+
+Light sun() {
+    Light l = makeLight(LightType::Directional);
+    l.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+    l.shadows = false;  // the GPU has no shadow maps yet
+    return l;
+}
+
+Light pointLight(glm::vec3 p, glm::vec3 color) {
+    Light l = makeLight(LightType::Point);
+    l.position = p;
+    l.color = color;
+    l.range = 8.0f;
+    return l;
+}
+
+Light spotLight() {
+    Light l = makeLight(LightType::Spot);
+    l.position = {0.5f, 3.0f, 0.0f};
+    l.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.1f));
+    l.intensity = 40.0f;
+    l.fog_scale = 2.0f;
+    return l;
+}
+
+Volume box() {
+    Volume v;
+    v.type = VolumeType::Box;
+    v.transform.scale = {3.0f, 2.0f, 3.0f};
+    v.transform.rotation_deg = {0.0f, 30.0f, 0.0f};
+    v.transform.translation = {0.0f, 1.0f, 0.0f};
+    v.edge_fade = 0.3f;
+    v.medium.scattering = {0.4f, 0.5f, 0.6f};
+    v.medium.absorption = {0.05f, 0.05f, 0.05f};
+    v.medium.phase_g = 0.6f;
+    return v;
+}
+
+Volume height(HeightProfile profile) {
+    Volume v;
+    v.type = VolumeType::Height;
+    v.profile = profile;
+    v.base_height = 0.2f;
+    v.falloff = 0.8f;
+    v.transition_height = 2.5f;
+    v.medium.scattering = {0.15f, 0.15f, 0.2f};
+    v.medium.phase_g = -0.3f;
+    return v;
+}
+
+Volume depthFog() {
+    Volume v;
+    v.type = VolumeType::Depth;
+    v.visibility_distance = 20.0f;
+    v.start_distance = 2.0f;
+    v.medium.scattering = {0.05f, 0.06f, 0.07f};
+    return v;
+}
+
+std::vector<Geometry> ground() {
+    Geometry plane;
+    plane.type = GeometryType::Plane;
+    plane.height = -0.5f;
+    Geometry cube;
+    cube.type = GeometryType::Box;
+    cube.transform.translation = {-1.5f, 0.25f, -1.0f};
+    cube.transform.rotation_deg = {0.0f, 20.0f, 0.0f};
+    cube.albedo = {0.7f, 0.3f, 0.2f};
+    Geometry ball;
+    ball.type = GeometryType::Sphere;
+    ball.center = {1.2f, 0.5f, 0.0f};
+    ball.radius = 0.9f;
+    ball.emission = {0.1f, 0.2f, 0.1f};
+    return {plane, cube, ball};
+}
+
+// An Image view of one channel-triplet volume, so relativeMeanAbsError applies to it.
+Image asImage(const std::vector<glm::vec4>& v) {
+    Image img(static_cast<int>(v.size()), 1);
+    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
+    return img;
+}
+
+bool allFinite(const std::vector<glm::vec4>& v) {
+    for (const glm::vec4& p : v)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w)) return false;
+    return true;
+}
+
+class GpuTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        GpuOptions options;
+        options.validation = true;
+        auto r = GpuRenderer::create(options);
+        ASSERT_TRUE(r.ok()) << r.error().message;
+        renderer = std::move(r.value());
+    }
+    void TearDown() override {
+        if (!renderer) return;
+        const std::vector<std::string> messages = renderer->validationMessages();
+        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+    }
+
+    // Renders on both sides and checks agreement of the integrated volume and the image.
+    void expectMatchesCpu(const Scene& scene, const char* what) {
+        const RenderRequest request = smallRequest();
+        const FroxelResult cpu = renderFroxelCpu(scene, request);
+        auto gpu = renderer->render(scene, request, true);
+        ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+        const GpuRender& g = gpu.value();
+        const FroxelVolumes& gv = g.volumes;
+        ASSERT_EQ(gv.dims, cpu.volumes.dims);
+        for (const auto* v : {&gv.mediaScatteringG, &gv.mediaExtinction, &gv.mediaEmission, &gv.source,
+                              &gv.integratedScattering, &gv.integratedTransmittance})
+            EXPECT_TRUE(allFinite(*v)) << what;
+        EXPECT_TRUE(brume::allFinite(g.image)) << what;
+        const double scatErr =
+            relativeMeanAbsError(asImage(gv.integratedScattering), asImage(cpu.volumes.integratedScattering));
+        const double transErr =
+            relativeMeanAbsError(asImage(gv.integratedTransmittance), asImage(cpu.volumes.integratedTransmittance));
+        const double imageErr = relativeMeanAbsError(g.image, cpu.image);
+        EXPECT_LT(scatErr, kTolerance) << what << ": integrated scattering";
+        EXPECT_LT(transErr, kTolerance) << what << ": integrated transmittance";
+        EXPECT_LT(imageErr, kTolerance) << what << ": image";
+        EXPECT_EQ(g.litFroxels, cpu.volumes.litFroxels) << what;
+        EXPECT_EQ(g.skippedFroxels, cpu.volumes.skippedFroxels) << what;
+        std::printf("[gpu-vs-cpu] %-28s scattering %.2e transmittance %.2e image %.2e\n", what, scatErr, transErr,
+                    imageErr);
+    }
+
+    std::unique_ptr<GpuRenderer> renderer;
+};
+
+TEST_F(GpuTest, BoxVolumeLitBySunMatchesCpu) {
+    Scene s = baseScene();
+    s.volumes = {box()};
+    s.lights = {sun()};
+    expectMatchesCpu(s, "box + sun");
+}
+
+TEST_F(GpuTest, ExponentialHeightFogLitByPointLightMatchesCpu) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Exponential)};
+    s.lights = {pointLight({0.0f, 1.0f, 1.0f}, {1.0f, 0.8f, 0.6f})};
+    expectMatchesCpu(s, "height exp + point");
+}
+
+TEST_F(GpuTest, LinearHeightFogLitBySpotMatchesCpu) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Linear)};
+    s.lights = {spotLight()};
+    expectMatchesCpu(s, "height linear + spot");
+}
+
+TEST_F(GpuTest, DepthFogWithAmbientOnlyMatchesCpu) {
+    Scene s = baseScene();
+    s.volumes = {depthFog()};
+    expectMatchesCpu(s, "depth + ambient");
+}
+
+TEST_F(GpuTest, OverlappingEmissiveVolumesAndEveryLightTypeMatchCpu) {
+    Scene s = baseScene();
+    Volume glow = box();
+    glow.medium.emission = {0.3f, 0.1f, 0.0f};
+    glow.medium.phase_g = -0.5f;
+    glow.transform.translation = {1.0f, 0.5f, 0.0f};
+    s.volumes = {box(), glow, height(HeightProfile::Exponential), depthFog()};
+    s.lights = {sun(), pointLight({-1.0f, 1.0f, 1.0f}, {1.0f, 0.5f, 0.2f}), spotLight()};
+    s.lights[0].fog_scale = 0.5f;
+    expectMatchesCpu(s, "overlaps + all lights");
+}
+
+TEST_F(GpuTest, GeometryBehindFogMatchesCpu) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Exponential)};
+    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
+    s.geometry = ground();
+    expectMatchesCpu(s, "geometry + height + lights");
+}
+
+// A purely emissive medium (sigma_t = 0) skips lighting but still glows on both sides; and shadow
+// flags are ignored alike by both froxel renderers until shadow maps exist.
+TEST_F(GpuTest, EmissiveOnlyMediumAndShadowFlagsMatchCpu) {
+    Scene s = baseScene();
+    Volume glow = box();
+    glow.medium.scattering = glm::vec3(0.0f);
+    glow.medium.absorption = glm::vec3(0.0f);
+    glow.medium.emission = {0.4f, 0.2f, 0.1f};
+    s.volumes = {glow};
+    Light l = sun();
+    l.shadows = true;
+    s.lights = {l};
+    s.geometry = ground();
+    expectMatchesCpu(s, "emissive only + shadow flag");
+}
+
+// Past the froxel far the composite continues height and depth fog in closed form to the surface
+// or the camera far; here that part carries most of the fog.
+TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
+    Scene s = baseScene();
+    s.camera.far = 400.0f;
+    s.froxels.far = 8.0f;
+    Volume h = height(HeightProfile::Exponential);
+    h.falloff = 0.2f;
+    s.volumes = {h, depthFog()};
+    s.lights = {sun()};
+    Geometry plane;
+    plane.type = GeometryType::Plane;
+    plane.height = -0.5f;
+    s.geometry = {plane};
+    expectMatchesCpu(s, "distant fog");
+}
+
+TEST_F(GpuTest, EmptySceneIsTheAmbientSky) {
+    Scene s = baseScene();
+    auto gpu = renderer->render(s, smallRequest());
+    ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+    for (const glm::vec3& p : gpu.value().image.pixels) ASSERT_EQ(p, s.ambient);
+    EXPECT_EQ(gpu.value().litFroxels, 0u);
+}
+
+TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.lights = {sun(), pointLight({0.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f})};
+    s.geometry = ground();
+    ASSERT_TRUE(renderer->render(s, smallRequest()).ok());  // warm-up: first dispatches compile shaders
+    auto gpu = renderer->render(s, smallRequest());
+    ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+    const std::vector<std::string> expected{"geometry", "voxelize", "light", "integrate", "composite", "readback"};
+    ASSERT_EQ(gpu.value().passes.size(), expected.size());
+    double sum = 0.0;
+    for (size_t i = 0; i < expected.size(); ++i) {
+        const PassTiming& t = gpu.value().passes[i];
+        EXPECT_EQ(t.name, expected[i]);
+        EXPECT_GE(t.gpuMs, 0.0) << t.name;
+        sum += t.gpuMs;
+    }
+    // The passes run inside the submit-to-fence interval, so together they cannot exceed it.
+    EXPECT_LE(sum, gpu.value().wallMs * 1.01 + 0.05);
+}
+
+TEST_F(GpuTest, ResizingBetweenRendersKeepsResultsCorrect) {
+    Scene s = baseScene();
+    s.volumes = {box()};
+    s.lights = {sun()};
+    RenderRequest small = smallRequest();
+    RenderRequest other = small;
+    other.width = 64;
+    other.height = 36;
+    ASSERT_TRUE(renderer->render(s, small).ok());
+    auto gpu = renderer->render(s, other);
+    ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+    EXPECT_LT(relativeMeanAbsError(gpu.value().image, renderFroxelCpu(s, other).image), kTolerance);
+}
+
+TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {
+    GpuOptions options;
+    options.device = "no such gpu 1234";
+    auto r = GpuRenderer::create(options);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("no such gpu 1234"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("available"), std::string::npos) << r.error().message;
+}
+
+TEST(GpuDevice, DeviceIsChosenByCaseInsensitiveNameAndValidationByEnvironment) {
+    auto automatic = GpuRenderer::create({});
+    ASSERT_TRUE(automatic.ok()) << automatic.error().message;
+    const std::string name = automatic.value()->deviceName();
+    EXPECT_FALSE(automatic.value()->validationEnabled());
+    GpuOptions options;
+    for (char c : name.substr(0, 4)) options.device += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    setenv("BRUME_VALIDATION", "1", 1);
+    auto named = GpuRenderer::create(options);
+    unsetenv("BRUME_VALIDATION");
+    ASSERT_TRUE(named.ok()) << named.error().message;
+    EXPECT_EQ(named.value()->deviceName().substr(0, 4), name.substr(0, 4));
+    EXPECT_TRUE(named.value()->validationEnabled());
+}
+
+TEST(GpuDevice, NoVulkanDriverGivesAClearSentence) {
+    const char* old = std::getenv("VK_ICD_FILENAMES");
+    const std::string saved = old ? old : "";
+    setenv("VK_ICD_FILENAMES", "/nonexistent", 1);
+    auto r = GpuRenderer::create({});
+    if (old) setenv("VK_ICD_FILENAMES", saved.c_str(), 1);
+    else unsetenv("VK_ICD_FILENAMES");
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("No Vulkan device was found"), std::string::npos) << r.error().message;
+}
+
+}  // namespace
