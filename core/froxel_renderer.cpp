@@ -147,7 +147,8 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Fr
         vec3 background = cs.ambient;
         float viewDepth = cameraFar;
         if (hit.hit()) {
-            background = shadeSurface(cs, geometry, hit);
+            // No shadows yet, as on the GPU (shadow maps come with the shadows issue).
+            background = shadeSurface(cs, geometry, hit, nullptr, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
         }
         shd::Accumulated fog = sampleIntegrated(v, pixel, viewDepth);

@@ -59,7 +59,8 @@ using LightTransmittanceFn = std::function<glm::vec3(int, glm::vec3, glm::vec3, 
 
 // Outgoing radiance of a Lambertian surface point: albedo/pi x irradiance of each light (occluded by
 // geometry for lights with shadows, times `fogTransmittance` when given) + albedo x ambient + emission.
+// geometryShadows = false ignores occlusion entirely (the froxel renderers until shadow maps land).
 glm::vec3 shadeSurface(const CompiledScene& cs, const GeometrySet& geometry, const SurfaceHit& hit,
-                       const LightTransmittanceFn* fogTransmittance = nullptr);
+                       const LightTransmittanceFn* fogTransmittance = nullptr, bool geometryShadows = true);
 
 }  // namespace brume

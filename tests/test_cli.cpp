@@ -1,1 +1,279 @@
+// End-to-end tests of the `brume` command line: runs the built binary as a user would, checking
+// exit codes, the one-line error contract, the files it writes (and does not leave behind) and the
+// help text. Images are 64x36 at low quality to keep each test well under a second or two.
 #include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "core/image.h"
+#include "core/settings.h"
+#include "io/image_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kDefaultScene = std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json";
+const std::string kSmall = " --width 64 --height 36 --quality low";
+
+struct CliRun {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+std::string readText(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+void writeText(const fs::path& p, const std::string& text) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+}
+
+std::set<std::string> listFolder(const fs::path& dir) {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+    return names;
+}
+
+int countLines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("brume_cli_" + std::to_string(getpid()) + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "work");
+        logs_ = dir_ / "logs";
+        fs::create_directories(logs_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    // Runs `brume ARGS` in `cwd` (default: the test's work folder), capturing stdout and stderr.
+    CliRun brume(const std::string& args, const fs::path& cwd = {}) const {
+        const fs::path where = cwd.empty() ? dir_ / "work" : cwd;
+        const std::string cmd = "cd " + quoted(where.string()) + " && " + quoted(BRUME_EXE) + " " + args + " >" +
+                                quoted((logs_ / "out").string()) + " 2>" + quoted((logs_ / "err").string());
+        const int status = std::system(cmd.c_str());
+        CliRun r;
+        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = readText(logs_ / "out");
+        r.err = readText(logs_ / "err");
+        return r;
+    }
+
+    // The error contract for bad input: exit 2 and exactly one stderr line "error: ...".
+    static void expectOneLineError(const CliRun& r, const std::string& mustMention) {
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+        EXPECT_EQ(countLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(mustMention), std::string::npos) << "stderr should mention '" << mustMention << "': " << r.err;
+    }
+
+    fs::path dir_;
+    fs::path logs_;
+};
+
+TEST_F(Cli, RenderPngWithEachRenderer) {
+    for (const std::string renderer : {"", " --cpu", " --reference"}) {
+        const fs::path out = dir_ / "work" / "fog.png";
+        fs::remove(out);
+        const CliRun r = brume("render " + quoted(kDefaultScene) + " -o fog.png" + kSmall + renderer);
+        ASSERT_EQ(r.exitCode, 0) << renderer << ": " << r.err;
+        EXPECT_NE(r.out.find("fog.png"), std::string::npos) << r.out;
+        EXPECT_NE(r.err.find("100%"), std::string::npos) << "progress should end at 100%: " << r.err;
+        brume::Result<brume::Image> img = brume::readPngLinear(out.string());
+        ASSERT_TRUE(img.ok()) << renderer << ": " << img.error().message;
+        EXPECT_EQ(img.value().width, 64);
+        EXPECT_EQ(img.value().height, 36);
+        EXPECT_EQ(listFolder(dir_ / "work"), std::set<std::string>{"fog.png"}) << "no temporary files left";
+    }
+}
+
+TEST_F(Cli, RenderExrIsFiniteAndNotBlack) {
+    for (const std::string renderer : {" --cpu", " --reference"}) {
+        const CliRun r = brume("render " + quoted(kDefaultScene) + " -o fog.EXR" + kSmall + renderer);
+        ASSERT_EQ(r.exitCode, 0) << renderer << ": " << r.err;
+        brume::Result<brume::Image> img = brume::readExr((dir_ / "work" / "fog.EXR").string());
+        ASSERT_TRUE(img.ok()) << img.error().message;
+        EXPECT_EQ(img.value().width, 64);
+        EXPECT_EQ(img.value().height, 36);
+        EXPECT_TRUE(brume::allFinite(img.value()));
+        double sum = 0.0;
+        for (const glm::vec3& p : img.value().pixels) sum += p.x + p.y + p.z;
+        EXPECT_GT(sum, 0.0) << renderer << ": the lit default scene rendered black";
+    }
+}
+
+TEST_F(Cli, WidthAndHeightOverrideTheSceneAndExposureBrightensPng) {
+    auto meanOf = [&](const std::string& extra) {
+        const CliRun r = brume("render " + quoted(kDefaultScene) + " -o e.png --width 48 --height 20 --quality low" + extra);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        brume::Result<brume::Image> img = brume::readPngLinear((dir_ / "work" / "e.png").string());
+        EXPECT_TRUE(img.ok());
+        if (!img.ok()) return 0.0;
+        EXPECT_EQ(img.value().width, 48);
+        EXPECT_EQ(img.value().height, 20);
+        double sum = 0.0;
+        for (const glm::vec3& p : img.value().pixels) sum += p.x + p.y + p.z;
+        return sum;
+    };
+    EXPECT_GT(meanOf(" --exposure 4"), meanOf(" --exposure 0.25"));
+}
+
+TEST_F(Cli, ValidatePrintsOkAndSummary) {
+    const CliRun r = brume("validate " + quoted(kDefaultScene));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.rfind(kDefaultScene + ": ok\n", 0), 0u) << r.out;
+    EXPECT_EQ(countLines(r.out), 2) << r.out;
+    EXPECT_NE(r.out.find("3 lights"), std::string::npos) << r.out;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_F(Cli, EveryShippedSceneValidates) {
+    for (const auto& e : fs::directory_iterator(fs::path(BRUME_SOURCE_DIR) / "assets" / "scenes")) {
+        if (e.path().extension() != ".json") continue;
+        const CliRun r = brume("validate " + quoted(e.path().string()));
+        EXPECT_EQ(r.exitCode, 0) << e.path() << ": " << r.err;
+    }
+}
+
+// Bad scenes: the message names the file and the JSON path of the problem.
+TEST_F(Cli, BadScenesGiveOneLineNamingFileAndPath) {
+    struct Case {
+        const char* file;
+        const char* json;
+        const char* pathPart;
+    };
+    const Case cases[] = {
+        {"syntax.json", "{\"camera\": {\"fov_y_deg\": 50,, }}", "syntax.json"},
+        {"unknown_key.json", "{\"brume_scene\": 1, \"camera\": {\"fov_y_degs\": 50}}", "camera.fov_y_degs"},
+        {"out_of_range.json", "{\"brume_scene\": 1, \"camera\": {\"fov_y_deg\": 500}}", "fov_y_deg"},
+        {"bad_light.json", "{\"brume_scene\": 1, \"lights\": [{\"type\": \"point\", \"intensity\": -3}]}", "lights[0].intensity"},
+    };
+    for (const Case& c : cases) {
+        const fs::path scene = dir_ / "scenes" / c.file;
+        writeText(scene, c.json);
+        for (const std::string command : {"validate ", "render "}) {
+            const std::string extra = command == "render " ? " -o out.png" + kSmall : "";
+            const CliRun r = brume(command + quoted(scene.string()) + extra);
+            SCOPED_TRACE(command + c.file);
+            expectOneLineError(r, c.file);
+            EXPECT_NE(r.err.find(c.pathPart), std::string::npos) << r.err;
+            EXPECT_TRUE(r.out.empty()) << r.out;
+        }
+    }
+    EXPECT_TRUE(listFolder(dir_ / "work").empty()) << "a failed render must leave no file behind";
+}
+
+TEST_F(Cli, BadArgumentsGiveOneLine) {
+    const std::string scene = quoted(kDefaultScene);
+    expectOneLineError(brume("render " + scene + " -o out.png --bogus"), "--bogus");
+    expectOneLineError(brume("render " + scene + " -o out.png --width"), "width");
+    expectOneLineError(brume("render " + scene), "output");
+    expectOneLineError(brume("render " + scene + " -o out.png --width 0"), "--width");
+    expectOneLineError(brume("render " + scene + " -o out.png --height 100000"), "--height");
+    expectOneLineError(brume("render " + scene + " -o out.png --width abc"), "abc");
+    expectOneLineError(brume("render " + scene + " -o out.png --quality extreme"), "extreme");
+    expectOneLineError(brume("render " + scene + " -o out.png --exposure -1"), "--exposure");
+    expectOneLineError(brume("render " + scene + " -o out.png --frames 0"), "--frames");
+    expectOneLineError(brume("render " + scene + " -o out.png --cpu --reference"), "--reference");
+    expectOneLineError(brume("render missing_scene.json -o out.png"), "missing_scene.json");
+    expectOneLineError(brume("validate missing_scene.json"), "missing_scene.json");
+    expectOneLineError(brume("render " + scene + " -o out.jpg"), "out.jpg");
+    expectOneLineError(brume("render " + scene + " -o no_such_folder/out.png"), "no_such_folder");
+    expectOneLineError(brume("frobnicate"), "frobnicate");
+    expectOneLineError(brume(""), "render, validate or settings");
+    expectOneLineError(brume("--threads 2"), "");
+    EXPECT_TRUE(listFolder(dir_ / "work").empty()) << "failed commands must leave no file behind";
+}
+
+TEST_F(Cli, OutputBelowAFileIsRejected) {
+    writeText(dir_ / "work" / "afile", "x");
+    expectOneLineError(brume("render " + quoted(kDefaultScene) + " -o afile/out.png" + kSmall), "afile");
+    EXPECT_EQ(listFolder(dir_ / "work"), std::set<std::string>{"afile"});
+}
+
+TEST_F(Cli, FailedRenderKeepsThePreviousOutput) {
+    writeText(dir_ / "work" / "keep.png", "previous");
+    writeText(dir_ / "scenes" / "bad.json", "{\"brume_scene\": 1, \"camera\": {\"near\": -1}}");
+    expectOneLineError(brume("render " + quoted((dir_ / "scenes" / "bad.json").string()) + " -o keep.png" + kSmall),
+                       "bad.json");
+    EXPECT_EQ(readText(dir_ / "work" / "keep.png"), "previous");
+    EXPECT_EQ(listFolder(dir_ / "work"), std::set<std::string>{"keep.png"});
+}
+
+TEST_F(Cli, HelpOfEveryCommandMentionsEveryOption) {
+    struct Case {
+        std::string command;
+        std::vector<std::string> mentions;
+    };
+    const std::vector<Case> cases = {
+        {"--help", {"render", "validate", "settings"}},
+        {"render --help",
+         {"--output", "-o", "--width", "--height", "--quality", "--frames", "--reference", "--cpu", "--exposure",
+          "--threads", "px", "1..16384", "low|medium|high|ultra", "Default:", "Range:"}},
+        {"validate --help", {"scene"}},
+        {"settings --help", {"--markdown"}},
+    };
+    for (const Case& c : cases) {
+        const CliRun r = brume(c.command);
+        EXPECT_EQ(r.exitCode, 0) << c.command << ": " << r.err;
+        for (const std::string& m : c.mentions) {
+            EXPECT_NE(r.out.find(m), std::string::npos) << c.command << " should mention " << m << ":\n" << r.out;
+        }
+    }
+}
+
+TEST_F(Cli, SettingsListEverySetting) {
+    const CliRun plain = brume("settings");
+    const CliRun markdown = brume("settings --markdown");
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    ASSERT_EQ(markdown.exitCode, 0) << markdown.err;
+    for (const brume::Setting* s : brume::settings::kAll) {
+        EXPECT_NE(plain.out.find(std::string(s->path)), std::string::npos) << s->path;
+        std::string escaped;  // a '|' inside a Markdown table cell is written "\|"
+        for (char c : s->path) escaped += c == '|' ? std::string("\\|") : std::string(1, c);
+        EXPECT_NE(markdown.out.find(escaped), std::string::npos) << escaped;
+    }
+    EXPECT_NE(plain.out.find("16384"), std::string::npos) << "ranges are listed";
+    EXPECT_NE(markdown.out.find("|"), std::string::npos);
+}
+
+TEST_F(Cli, RelativeScenePathFromAnotherFolder) {
+    fs::create_directories(dir_ / "scenes");
+    fs::copy_file(kDefaultScene, dir_ / "scenes" / "copy.json", fs::copy_options::overwrite_existing);
+    const CliRun v = brume("validate ../scenes/copy.json");
+    EXPECT_EQ(v.exitCode, 0) << v.err;
+    const CliRun r = brume("render ../scenes/copy.json -o ../out/fog.png" + kSmall, dir_ / "work");
+    EXPECT_EQ(r.exitCode, 2) << "the output folder does not exist yet";
+    fs::create_directories(dir_ / "out");
+    const CliRun r2 = brume("render ../scenes/copy.json -o ../out/fog.png" + kSmall, dir_ / "work");
+    EXPECT_EQ(r2.exitCode, 0) << r2.err;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "fog.png"));
+}
+
+}  // namespace

@@ -1,0 +1,100 @@
+#include "bench_command.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <vector>
+
+#include "cli_text.h"
+#include "io/scene_json.h"
+#include "render_command.h"
+
+namespace brume::app {
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
+    CLI::App* cmd = app.add_subcommand(
+        "bench", "Time repeated renders of a scene after a warm-up and print per-pass medians (a benchmark, not a test).");
+    cmd->add_option("SCENE", o.scenePath, "Scene file (JSON; see docs/scene-format.md).")->required();
+    o.widthOption = cmd->add_option("--width", o.width, optionHelp(settings::render_width, "the scene's render.width"));
+    o.heightOption = cmd->add_option("--height", o.height, optionHelp(settings::render_height, "the scene's render.height"));
+    o.qualityOption = cmd->add_option("--quality", o.quality,
+                                      optionHelp(settings::render_quality, "the scene's render.quality"));
+    cmd->add_option("--frames", o.frames, "Timed renders. Default: 20. Range: 1..10000.")->check(CLI::Range(1, 10000));
+    cmd->add_option("--warmup", o.warmup,
+                    "Untimed renders first (the first dispatch pays shader compilation). Default: 3. Range: 0..1000.")
+        ->check(CLI::Range(0, 1000));
+    cmd->add_flag("--cpu", o.cpu, "Time the CPU froxel renderer instead of the GPU. Default: off.");
+    cmd->add_option("--device", o.device, "GPU renderer: Vulkan device whose name contains this text. Default: automatic.");
+    return cmd;
+}
+
+CommandResult runBench(const BenchOptions& o) {
+    Result<Scene> scene = loadSceneFile(o.scenePath);
+    if (!scene) return badInput(scene.error().message);
+    RenderRequest request = requestFromScene(scene.value());
+    if (o.widthOption->count() > 0) request.width = o.width;
+    if (o.heightOption->count() > 0) request.height = o.height;
+    if (request.width < settings::render_width.min || request.width > settings::render_width.max ||
+        request.height < settings::render_height.min || request.height > settings::render_height.max) {
+        return badInput("--width/--height out of range: expected " + formatRange(settings::render_width) + ".");
+    }
+    if (o.qualityOption->count() > 0 && !parseQuality(o.quality, request.quality)) {
+        return badInput("--quality '" + o.quality + "' is not one of " + std::string(settings::render_quality.choices) + ".");
+    }
+    const RendererKind kind = o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu;
+
+    // One session for every frame: what an editor pays per frame, not per start-up.
+    RenderSession session(kind, o.device);
+    if (session.startFailure()) return badInput(session.startFailure()->message);
+    std::map<std::string, std::vector<double>> passMs;
+    std::vector<std::string> order;
+    std::vector<double> wall;
+    RenderStats last;
+    for (int i = 0; i < o.warmup + o.frames; ++i) {
+        std::variant<RenderOutput, RenderFailure> r = session.render(scene.value(), request);
+        if (const RenderFailure* f = std::get_if<RenderFailure>(&r)) return internalFailure(f->message);
+        if (i < o.warmup) continue;
+        last = std::get<RenderOutput>(r).stats;
+        wall.push_back(last.wallMs);
+        for (const PassTime& p : last.passes) {
+            if (!passMs.count(p.name)) order.push_back(p.name);
+            passMs[p.name].push_back(p.gpuMs);
+        }
+    }
+    const double wallMedian = median(wall);
+    std::printf("brume bench: %s, %s renderer%s%s, %dx%d, quality %s, froxels %dx%dx%d, %d frames after %d warm-up\n",
+                o.scenePath.c_str(), rendererName(kind), last.device.empty() ? "" : " on ", last.device.c_str(),
+                request.width, request.height, toString(request.quality), last.froxelDims.x, last.froxelDims.y,
+                last.froxelDims.z, o.frames, o.warmup);
+    double passSum = 0.0;
+    for (const std::string& name : order) passSum += median(passMs[name]);
+    if (!order.empty()) {
+        std::printf("%-12s %10s %10s %10s %8s\n", "pass", "median ms", "min ms", "max ms", "share");
+        for (const std::string& name : order) {
+            const std::vector<double>& v = passMs[name];
+            const double m = median(v);
+            std::printf("%-12s %10.3f %10.3f %10.3f %7.1f%%\n", name.c_str(), m, *std::min_element(v.begin(), v.end()),
+                        *std::max_element(v.begin(), v.end()), passSum > 0.0 ? 100.0 * m / passSum : 0.0);
+        }
+        std::printf("%-12s %10.3f   (sum of pass medians; wall/GPU ratio %.2f)\n", "gpu total", passSum,
+                    passSum > 0.0 ? wallMedian / passSum : 0.0);
+    }
+    std::printf("%-12s %10.3f   (median wall clock per render)\n", "wall", wallMedian);
+    std::printf("lit froxels %zu, skipped %zu (%.1f%% skipped)\n", last.litFroxels, last.skippedFroxels,
+                100.0 * static_cast<double>(last.skippedFroxels) /
+                    static_cast<double>(std::max<size_t>(1, last.litFroxels + last.skippedFroxels)));
+    return success();
+}
+
+}  // namespace brume::app

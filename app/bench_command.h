@@ -1,0 +1,30 @@
+// `brume bench`: per-pass medians of repeated renders after a warm-up. A benchmark, not a test:
+// its numbers depend on the machine.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "command.h"
+
+namespace brume::app {
+
+struct BenchOptions {
+    std::string scenePath;
+    int width = 0;
+    int height = 0;
+    std::string quality;
+    int frames = 20;
+    int warmup = 3;
+    bool cpu = false;
+    std::string device;
+    CLI::Option* widthOption = nullptr;
+    CLI::Option* heightOption = nullptr;
+    CLI::Option* qualityOption = nullptr;
+};
+
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
+CommandResult runBench(const BenchOptions& options);
+
+}  // namespace brume::app

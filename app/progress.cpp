@@ -1,0 +1,53 @@
+#include "progress.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <unistd.h>
+
+namespace brume::app {
+
+// Plain (non-terminal) output prints only at these steps: 4 lines per render at most.
+static constexpr int kPlainStep = 25;
+
+ProgressLine::ProgressLine(std::string label) : label_(std::move(label)), terminal_(isatty(STDERR_FILENO) == 1) {}
+
+ProgressLine::~ProgressLine() { end(); }
+
+void ProgressLine::show(int percent) {
+    if (terminal_) {
+        std::fprintf(stderr, "\r%s %3d%%", label_.c_str(), percent);
+    } else {
+        std::fprintf(stderr, "%s %d%%\n", label_.c_str(), percent);
+    }
+    std::fflush(stderr);
+    shown_ = percent;
+}
+
+void ProgressLine::update(float fraction) {
+    if (!std::isfinite(fraction)) return;
+    const int percent = std::clamp(static_cast<int>(fraction * 100.0f), 0, 100);
+    std::lock_guard lock(mutex_);
+    if (ended_ || percent <= shown_) return;
+    if (terminal_ || percent / kPlainStep > std::max(shown_, 0) / kPlainStep) {
+        show(terminal_ ? percent : percent / kPlainStep * kPlainStep);
+    }
+}
+
+void ProgressLine::complete() {
+    std::lock_guard lock(mutex_);
+    if (ended_) return;
+    if (shown_ < 100) show(100);
+    if (terminal_) std::fputc('\n', stderr);
+    ended_ = true;
+}
+
+void ProgressLine::end() {
+    std::lock_guard lock(mutex_);
+    if (ended_) return;
+    if (terminal_ && shown_ >= 0) std::fputc('\n', stderr);
+    ended_ = true;
+}
+
+}  // namespace brume::app

@@ -1,0 +1,237 @@
+#include "render_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cctype>
+#include <filesystem>
+#include <optional>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#if BRUME_HAS_GPU
+#include "gpu/gpu_renderer.h"
+#endif
+
+#include "cli_text.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/scene_json.h"
+#include "progress.h"
+
+namespace brume::app {
+
+namespace fs = std::filesystem;
+
+const char* rendererName(RendererKind kind) {
+    switch (kind) {
+        case RendererKind::Gpu: return "gpu";
+        case RendererKind::FroxelCpu: return "cpu";
+        case RendererKind::Reference: return "reference";
+    }
+    return "?";
+}
+
+#if BRUME_HAS_GPU
+struct RenderSession::Gpu {
+    std::unique_ptr<gpu::GpuRenderer> renderer;
+};
+#else
+struct RenderSession::Gpu {};
+#endif
+
+RenderSession::RenderSession(RendererKind kind, const std::string& device) : kind_(kind) {
+    if (kind != RendererKind::Gpu) return;
+#if BRUME_HAS_GPU
+    Result<std::unique_ptr<gpu::GpuRenderer>> r = gpu::GpuRenderer::create({device, false});
+    if (!r) {
+        startFailure_ = RenderFailure{true, r.error().message};
+        return;
+    }
+    gpu_ = std::make_unique<Gpu>();
+    gpu_->renderer = std::move(r.value());
+#else
+    (void)device;
+    startFailure_ = RenderFailure{true, "this build of brume has no GPU renderer (BRUME_BUILD_GPU=OFF); use --cpu."};
+#endif
+}
+
+RenderSession::~RenderSession() = default;
+
+std::variant<RenderOutput, RenderFailure> RenderSession::render(const Scene& scene, const RenderRequest& request) {
+    if (startFailure_) return *startFailure_;
+    const auto start = std::chrono::steady_clock::now();
+    RenderOutput out;
+    switch (kind_) {
+        case RendererKind::Gpu: {
+#if BRUME_HAS_GPU
+            Result<gpu::GpuRender> r = gpu_->renderer->render(scene, request);
+            if (!r) return RenderFailure{false, r.error().message};
+            out.image = std::move(r.value().image);
+            out.stats.device = gpu_->renderer->deviceName();
+            for (const gpu::PassTiming& p : r.value().passes) out.stats.passes.push_back({p.name, p.gpuMs});
+            out.stats.froxelDims = r.value().dims;
+            out.stats.litFroxels = r.value().litFroxels;
+            out.stats.skippedFroxels = r.value().skippedFroxels;
+#endif
+            break;
+        }
+        case RendererKind::FroxelCpu: {
+            FroxelResult r = renderFroxelCpu(scene, request);
+            out.image = std::move(r.image);
+            out.stats.froxelDims = r.volumes.dims;
+            out.stats.litFroxels = r.volumes.litFroxels;
+            out.stats.skippedFroxels = r.volumes.skippedFroxels;
+            break;
+        }
+        case RendererKind::Reference: out.image = renderReference(scene, request); break;
+    }
+    out.stats.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+Result<void> writeStatsJson(const std::string& path, RendererKind kind, const RenderRequest& request,
+                            const RenderStats& stats) {
+    nlohmann::ordered_json j;
+    j["renderer"] = rendererName(kind);
+    if (!stats.device.empty()) j["device"] = stats.device;
+    j["width"] = request.width;
+    j["height"] = request.height;
+    j["quality"] = toString(request.quality);
+    j["wall_ms"] = stats.wallMs;
+    nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+    for (const PassTime& p : stats.passes) passes[p.name] = p.gpuMs;
+    j["gpu_pass_ms"] = passes;
+    if (kind != RendererKind::Reference) {
+        j["froxels"] = {stats.froxelDims.x, stats.froxelDims.y, stats.froxelDims.z};
+        j["lit_froxels"] = stats.litFroxels;
+        j["skipped_froxels"] = stats.skippedFroxels;
+    }
+    return writeTextFileAtomic(path, j.dump(2) + "\n");
+}
+
+CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene to a PNG (tone mapped) or EXR (linear radiance).");
+    cmd->add_option("SCENE", o.scenePath, "Scene file (JSON; see docs/scene-format.md).")->required();
+    cmd->add_option("-o,--output", o.outputPath,
+                    "Output image: .png (exposure, ACES filmic, sRGB) or .exr (linear, 32-bit float). "
+                    "Written atomically; its folder must exist.")
+        ->required();
+    const std::string w = std::to_string(settings::render_width.i());
+    const std::string h = std::to_string(settings::render_height.i());
+    o.widthOption = cmd->add_option("--width", o.width,
+                                    optionHelp(settings::render_width, "the scene's render.width (" + w + " px if absent)"));
+    o.heightOption = cmd->add_option(
+        "--height", o.height, optionHelp(settings::render_height, "the scene's render.height (" + h + " px if absent)"));
+    o.qualityOption = cmd->add_option(
+        "--quality", o.quality,
+        optionHelp(settings::render_quality, "the scene's render.quality (" + formatDefault(settings::render_quality) +
+                                                 " if absent); the reference renderer ignores it"));
+    o.frames = settings::cli_frames.i();
+    cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames));
+    auto* ref = cmd->add_flag("--reference", o.reference,
+                              "Use the per-pixel reference ray marcher (ground truth; slow). Default: off.");
+    auto* cpu = cmd->add_flag("--cpu", o.cpu,
+                              "Use the CPU froxel renderer (the GPU renderer's oracle). Default: off (the GPU renders).");
+    ref->excludes(cpu);
+    cmd->add_option("--device", o.device,
+                    "GPU renderer: Vulkan device whose name contains this text (case-insensitive). "
+                    "Default: the BRUME_DEVICE environment variable, else a discrete GPU, an integrated GPU, "
+                    "then a CPU implementation (lavapipe).");
+    cmd->add_option("--stats", o.statsPath,
+                    "Write render statistics as JSON: per-pass GPU milliseconds (GPU renderer), wall "
+                    "milliseconds, froxel grid size, lit and skipped froxels. Written atomically. Default: none.");
+    o.exposure = settings::cli_exposure.f();
+    cmd->add_option("--exposure", o.exposure, optionHelp(settings::cli_exposure));
+    o.threads = settings::cli_threads.i();
+    cmd->add_option("--threads", o.threads, optionHelp(settings::cli_threads));
+    return cmd;
+}
+
+static std::optional<CommandResult> checkRange(const char* name, double v, const Setting& s) {
+    if (std::isfinite(v) && v >= s.min && v <= s.max) return std::nullopt;
+    return badInput(std::string(name) + " " + formatNumber(v) + " is out of range: expected " + formatRange(s) + ".");
+}
+
+static std::optional<CommandResult> checkOutputPath(const std::string& out) {
+    const fs::path path(out);
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".png" && ext != ".exr") {
+        return badInput(out + ": unsupported output extension '" + ext + "'; use .png or .exr.");
+    }
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return badInput(out + ": output folder '" + dir.string() + "' does not exist.");
+    if (access(dir.c_str(), W_OK) != 0) return badInput(out + ": output folder '" + dir.string() + "' is not writable.");
+    if (fs::is_directory(path, ec)) return badInput(out + ": output path is a folder.");
+    return std::nullopt;
+}
+
+static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
+    if (o.widthOption->count() > 0)
+        if (auto e = checkRange("--width", o.width, settings::render_width)) return e;
+    if (o.heightOption->count() > 0)
+        if (auto e = checkRange("--height", o.height, settings::render_height)) return e;
+    Quality q;
+    if (o.qualityOption->count() > 0 && !parseQuality(o.quality, q)) {
+        return badInput("--quality '" + o.quality + "' is not one of " + std::string(settings::render_quality.choices) + ".");
+    }
+    if (auto e = checkRange("--frames", o.frames, settings::cli_frames)) return e;
+    if (auto e = checkRange("--exposure", o.exposure, settings::cli_exposure)) return e;
+    if (auto e = checkRange("--threads", o.threads, settings::cli_threads)) return e;
+    if (!o.statsPath.empty()) {
+        const fs::path dir = fs::path(o.statsPath).parent_path().empty() ? fs::path(".") : fs::path(o.statsPath).parent_path();
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec)) return badInput(o.statsPath + ": stats folder '" + dir.string() + "' does not exist.");
+    }
+    return checkOutputPath(o.outputPath);
+}
+
+static RenderRequest requestFromOptions(const Scene& scene, const RenderOptions& o) {
+    RenderRequest r = requestFromScene(scene);
+    if (o.widthOption->count() > 0) r.width = o.width;
+    if (o.heightOption->count() > 0) r.height = o.height;
+    if (o.qualityOption->count() > 0) parseQuality(o.quality, r.quality);
+    r.frames = o.frames;
+    r.threads = o.threads;
+    return r;
+}
+
+CommandResult runRender(const RenderOptions& o) {
+    if (auto e = checkOptions(o)) return *e;
+    Result<Scene> scene = loadSceneFile(o.scenePath);
+    if (!scene) return badInput(scene.error().message);
+    const RendererKind kind =
+        o.reference ? RendererKind::Reference : (o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu);
+    RenderRequest request = requestFromOptions(scene.value(), o);
+
+    ProgressLine progress(std::string("rendering (") + rendererName(kind) + ")");
+    request.progress = [&progress](float f) { progress.update(f); };
+    RenderSession session(kind, o.device);
+    std::variant<RenderOutput, RenderFailure> result = session.render(scene.value(), request);
+    if (const RenderFailure* f = std::get_if<RenderFailure>(&result)) {
+        progress.end();
+        return f->cannotRun ? badInput(f->message) : internalFailure(f->message);
+    }
+    RenderOutput& out = std::get<RenderOutput>(result);
+    progress.complete();
+    // Never write an image a viewer or compositor would choke on: NaN is a renderer bug.
+    if (!allFinite(out.image)) {
+        return internalFailure(std::string("the ") + rendererName(kind) + " renderer produced non-finite pixels; " +
+                               o.outputPath + " was not written.");
+    }
+    // Failing to write is about the path or the disk, which the user can fix.
+    if (Result<void> w = writeImage(out.image, o.outputPath, o.exposure); !w) return badInput(w.error().message);
+    if (!o.statsPath.empty()) {
+        if (Result<void> w = writeStatsJson(o.statsPath, kind, request, out.stats); !w) return badInput(w.error().message);
+    }
+    std::printf("wrote %s (%dx%d, %s renderer, quality %s, %.2f s)\n", o.outputPath.c_str(), request.width,
+                request.height, rendererName(kind), toString(request.quality), out.stats.wallMs / 1000.0);
+    return success();
+}
+
+}  // namespace brume::app

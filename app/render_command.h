@@ -1,0 +1,95 @@
+// `brume render`: options, their checks, and the dispatch to a renderer.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "command.h"
+#include "core/render.h"
+#include "core/result.h"
+
+namespace brume::app {
+
+// Add a renderer here and in renderScene/rendererName.
+enum class RendererKind { Gpu, FroxelCpu, Reference };
+
+const char* rendererName(RendererKind kind);
+
+// What a render produced besides the image, for --stats and `brume bench`.
+struct PassTime {
+    std::string name;
+    double gpuMs;
+};
+struct RenderStats {
+    std::string device;            // GPU renderer: the Vulkan device's name
+    std::vector<PassTime> passes;  // GPU renderer: per-pass GPU milliseconds
+    double wallMs = 0.0;           // wall clock of the whole render
+    glm::ivec3 froxelDims{0};      // froxel renderers
+    size_t litFroxels = 0;
+    size_t skippedFroxels = 0;
+};
+
+struct RenderOutput {
+    Image image;
+    RenderStats stats;
+};
+
+// A renderer's failure: `cannotRun` = it could not start (no Vulkan device, unknown device name),
+// which the user can fix (exit 2); otherwise it failed while rendering (exit 1).
+struct RenderFailure {
+    bool cannotRun;
+    std::string message;
+};
+
+// The one place that knows how to run each renderer. A session keeps what is expensive to create
+// (the Vulkan device and pipelines) across renders, as `brume bench` needs.
+class RenderSession {
+public:
+    RenderSession(RendererKind kind, const std::string& device);
+    ~RenderSession();
+    RenderSession(const RenderSession&) = delete;
+    RenderSession& operator=(const RenderSession&) = delete;
+
+    // Set when the renderer could not start (then render() returns it again).
+    const std::optional<RenderFailure>& startFailure() const { return startFailure_; }
+    std::variant<RenderOutput, RenderFailure> render(const Scene& scene, const RenderRequest& request);
+
+private:
+    RendererKind kind_;
+    std::optional<RenderFailure> startFailure_;
+    struct Gpu;
+    std::unique_ptr<Gpu> gpu_;
+};
+
+// Writes --stats JSON atomically.
+Result<void> writeStatsJson(const std::string& path, RendererKind kind, const RenderRequest& request,
+                            const RenderStats& stats);
+
+struct RenderOptions {
+    std::string scenePath;
+    std::string outputPath;
+    int width = 0;  // only read when the option was given (the scene's render block otherwise)
+    int height = 0;
+    std::string quality;
+    int frames = 0;
+    float exposure = 0.0f;
+    int threads = 0;
+    bool reference = false;
+    bool cpu = false;
+    std::string device;     // --device, GPU renderer
+    std::string statsPath;  // --stats
+    // Set by addRenderCommand, to tell given options from scene defaults.
+    CLI::Option* widthOption = nullptr;
+    CLI::Option* heightOption = nullptr;
+    CLI::Option* qualityOption = nullptr;
+};
+
+CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options);
+CommandResult runRender(const RenderOptions& options);
+
+}  // namespace brume::app

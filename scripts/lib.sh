@@ -1,0 +1,44 @@
+# Shared by scripts/run and scripts/test (sourced, not run): installs the Debian packages that are
+# missing, then configures and builds Brume in build/ (override with BRUME_BUILD_DIR).
+
+BRUME_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BRUME_BUILD="${BRUME_BUILD_DIR:-$BRUME_ROOT/build}"
+
+BRUME_PACKAGES=(
+  cmake g++ pkg-config
+  libopenvdb-dev libnanovdb-dev
+  libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev spirv-tools vulkan-validationlayers
+  libglm-dev libimgui-dev libglfw3-dev libstb-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libbenchmark-dev
+  xvfb xauth
+)
+
+brume_missing_packages() {
+  local p
+  for p in "${BRUME_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      echo "$p"
+    fi
+  done
+}
+
+# apt-get runs only when something is missing, so a ready machine builds offline.
+brume_install_deps() {
+  local missing
+  mapfile -t missing < <(brume_missing_packages)
+  if [[ ${#missing[@]} -eq 0 ]]; then
+    return 0
+  fi
+  echo "brume: installing missing packages: ${missing[*]}"
+  local sudo=()
+  if [[ "$(id -u)" -ne 0 ]]; then
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y "${missing[@]}"
+}
+
+brume_build() {
+  cmake -S "$BRUME_ROOT" -B "$BRUME_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  cmake --build "$BRUME_BUILD" -j"$(nproc)"
+}
