@@ -11,6 +11,7 @@
 
 #include "geometry.h"
 #include "parallel.h"
+#include "progress.h"
 #include "render.h"
 
 namespace brume {
@@ -26,34 +27,6 @@ size_t froxelIndex(ivec3 dims, int x, int y, int s) {
                static_cast<size_t>(dims.x) +
            static_cast<size_t>(x);
 }
-
-// Reports progress over the four passes, weighted by their item counts; calls the user's callback
-// at most once per percent (the contract allows ~100 calls).
-class Progress {
-public:
-    Progress(const ProgressFn& fn, double totalItems) : fn_(fn), total_(std::max(totalItems, 1.0)) {}
-    void finishedPass(double items) { base_ += items; }
-    // `done` items of the current pass have finished.
-    void report(int done) {
-        if (!fn_) return;
-        const int percent = static_cast<int>(100.0 * (base_ + done) / total_);
-        int last = last_.load();
-        while (percent > last) {
-            if (last_.compare_exchange_weak(last, percent)) {
-                std::lock_guard<std::mutex> lock(mutex_);
-                fn_(static_cast<float>(std::min(percent, 100)) * 0.01f);
-                return;
-            }
-        }
-    }
-
-private:
-    const ProgressFn& fn_;
-    double total_;
-    double base_ = 0.0;
-    std::atomic<int> last_{-1};
-    std::mutex mutex_;
-};
 
 // Pass 1. One row of froxels (y, s) per item: the media at each froxel's sample point.
 void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
@@ -187,7 +160,7 @@ FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
     const int rows = v.dims.y * v.dims.z;  // froxel rows (y, s): the voxelize and light work items
     const int columns = v.dims.x * v.dims.y;
     const int threads = request.threads;
-    Progress progress(request.progress, 2.0 * rows + columns + request.height);
+    ProgressReporter progress(request.progress, 2.0 * rows + columns + request.height);
     auto report = [&](int done) { progress.report(done); };
 
     parallelFor(rows, threads, [&](int r) { voxelizeRow(cs, v, r % v.dims.y, r / v.dims.y); }, report);

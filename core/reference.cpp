@@ -10,6 +10,7 @@
 
 #include "geometry.h"
 #include "parallel.h"
+#include "progress.h"
 #include "reference_detail.h"
 #include "render.h"
 
@@ -416,14 +417,8 @@ Image render(const Scene& scene, const RenderRequest& request, const StepParams&
     const Tracer tracer(scene, cs, geo, frame, params);
     Image img(request.width, request.height);
     const int rows = request.height;
-    // At most ~100 progress calls: one per `every` finished rows, and the last.
-    const int every = (rows + 99) / 100;
-    std::function<void(int)> done;
-    if (request.progress)
-        done = [&](int finished) {
-            if (finished % every == 0 || finished == rows)
-                request.progress(static_cast<float>(finished) / static_cast<float>(rows));
-        };
+    ProgressReporter progress(request.progress, rows);
+    auto done = [&progress](int finished) { progress.report(finished); };
     parallelFor(
         rows, request.threads,
         [&](int y) {
