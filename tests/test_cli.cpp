@@ -277,3 +277,39 @@ TEST_F(Cli, RelativeScenePathFromAnotherFolder) {
 }
 
 }  // namespace
+
+namespace {
+
+class CliGpu : public Cli {};
+
+// A machine without any Vulkan driver: one sentence and exit 2 (the user can pass --cpu), never a
+// crash or a raw VkResult; --cpu still works there. --stats carries per-pass GPU milliseconds.
+TEST_F(CliGpu, NoVulkanDeviceGivesOneSentenceAndExitTwo) {
+    const std::string env = "VK_ICD_FILENAMES=/nonexistent VK_DRIVER_FILES=/nonexistent ";
+    const fs::path work = dir_ / "work";
+    const std::string cmd = "cd " + quoted(work.string()) + " && " + env + quoted(BRUME_EXE) + " render " +
+                            quoted(kDefaultScene) + " -o fog.png" + kSmall + " >" + quoted((logs_ / "out").string()) +
+                            " 2>" + quoted((logs_ / "err").string());
+    const int status = std::system(cmd.c_str());
+    CliRun noDevice;
+    noDevice.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    noDevice.err = readText(logs_ / "err");
+    expectOneLineError(noDevice, "Vulkan");
+    EXPECT_EQ(noDevice.err.find("VK_ERROR"), std::string::npos) << noDevice.err;
+    EXPECT_FALSE(fs::exists(work / "fog.png"));
+}
+
+TEST_F(CliGpu, StatsJsonHasEveryPassAndTheFroxelCounts) {
+    const CliRun r = brume("render " + quoted(kDefaultScene) + " -o fog.png --stats stats.json" + kSmall);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string stats = readText(dir_ / "work" / "stats.json");
+    for (const char* key : {"\"renderer\": \"gpu\"", "\"device\"", "\"wall_ms\"", "\"gpu_pass_ms\"", "\"voxelize\"",
+                            "\"light\"", "\"integrate\"", "\"composite\"", "\"froxels\"", "\"lit_froxels\"",
+                            "\"skipped_froxels\""}) {
+        EXPECT_NE(stats.find(key), std::string::npos) << key << " missing from " << stats;
+    }
+    const CliRun bad = brume("render " + quoted(kDefaultScene) + " -o fog.png --stats nowhere/stats.json" + kSmall);
+    expectOneLineError(bad, "nowhere");
+}
+
+}  // namespace
