@@ -2,6 +2,8 @@
 // precision, and no file at all for bad input (non-finite pixels, unknown extensions, bad folders).
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -16,26 +18,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh, empty folder per test, unique per process (other build folders may run the same test
-// at the same time), removed at the end of the test.
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / ("brume_test_image_io_" + name + "_" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
+// Each test's folder: brume_test_image_io_NAME_PID under the system temp folder.
+struct TempDir : test::TempDir {
+    explicit TempDir(const std::string& name) : test::TempDir("test_image_io", name) {}
 };
-
-size_t fileCount(const fs::path& dir) {
-    return static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
-}
+using test::fileCount;
 
 // A 64x36 gradient spanning 0 to ~100 in radiance, with different values per channel.
 Image gradient() {

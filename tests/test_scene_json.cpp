@@ -2,6 +2,8 @@
 // class of input error reported as "FILE: JSON-PATH: what is wrong".
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -24,26 +26,11 @@ std::string readAll(const fs::path& p) {
     return ss.str();
 }
 
-// A fresh, empty folder per test, unique per process (other build folders may run the same test
-// at the same time), removed at the end of the test.
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name)
-        : path(fs::temp_directory_path() / ("brume_test_scene_json_" + name + "_" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
+// Each test's folder: brume_test_scene_json_NAME_PID under the system temp folder.
+struct TempDir : test::TempDir {
+    explicit TempDir(const std::string& name) : test::TempDir("test_scene_json", name) {}
 };
-
-size_t fileCount(const fs::path& dir) {
-    return static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
-}
+using test::fileCount;
 
 // Every type of light, volume and geometry, with values away from the defaults, including floats
 // that have no short decimal form.
