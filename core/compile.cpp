@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "shadows.h"
+
 namespace brume {
 
 using shd::BRUME_HUGE;
@@ -104,15 +106,25 @@ shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
 
 shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
-    shd::DistantSegment seg = shd::emptyDistantSegment();
-    for (const shd::VolumeData& v : cs.volumes) {
-        const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, s0, s1);
-        if (len <= 0.0f) continue;
-        glm::vec3 light = cs.ambient;
-        for (const shd::LightData& l : cs.lights) light += shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w);
-        seg = shd::addDistantVolume(seg, v, len, light);
+    for (int piece = 0; piece < shd::DISTANT_SHADOW_PIECES; ++piece) {
+        const glm::vec2 b = shd::distantShadowPiece(s0, s1, piece);
+        const glm::vec3 middle = cs.cameraPosition + dir * std::sqrt(b.x * b.y);
+        shd::DistantSegment seg = shd::emptyDistantSegment();
+        for (const shd::VolumeData& v : cs.volumes) {
+            const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, b.x, b.y);
+            if (len <= 0.0f) continue;
+            glm::vec3 light = cs.ambient;
+            for (const shd::LightData& l : cs.lights) {
+                if (l.kind.x != shd::LIGHT_DIRECTIONAL) continue;
+                const glm::vec3 toLight = -glm::vec3(l.direction);
+                light += shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w) *
+                         lightFogTransmittance(cs, l, middle, toLight, shd::BRUME_HUGE, 0);
+            }
+            seg = shd::addDistantVolume(seg, v, len, light);
+        }
+        a = shd::accumulateDistant(a, seg);
     }
-    return shd::accumulateDistant(a, seg);
+    return a;
 }
 
 shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,

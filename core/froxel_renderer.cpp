@@ -13,6 +13,7 @@
 #include "parallel.h"
 #include "progress.h"
 #include "render.h"
+#include "shadows.h"
 
 namespace brume {
 namespace {
@@ -41,8 +42,8 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
     }
 }
 
-// Pass 2. Source term S = sigma_s (sum of lights' in-scattering + ambient) + emission, no shadows.
-// Returns how many froxels of the row were lit.
+// Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
+// light + ambient) + emission. Returns how many froxels of the row were lit.
 size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
@@ -60,7 +61,9 @@ size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
         const float g = v.mediaScatteringG[i].w;
         vec3 perSigmaS = vec3(v.frame.ambient);
         for (const shd::LightData& l : cs.lights) {
-            perSigmaS += shd::inScatterPerSigmaS(l, shd::evalLight(l, p), viewDir, g);
+            const shd::LightSample ls = shd::evalLight(l, p);
+            perSigmaS += shd::inScatterPerSigmaS(l, ls, viewDir, g) *
+                         lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, v.frame.shadows.x);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);
@@ -120,8 +123,12 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Fr
         vec3 background = cs.ambient;
         float viewDepth = cameraFar;
         if (hit.hit()) {
-            // No shadows yet, as on the GPU (shadow maps come with the shadows issue).
-            background = shadeSurface(cs, geometry, hit, nullptr, /*geometryShadows=*/false);
+            // The fog's shadow on the surface, as the GPU's geometry pass computes it.
+            const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
+                return lightFogTransmittance(cs, cs.lights[static_cast<size_t>(i)], from, toLight, dist,
+                                             v.frame.shadows.x);
+            };
+            background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
         }
         shd::Accumulated fog = sampleIntegrated(v, pixel, viewDepth);
@@ -154,7 +161,9 @@ FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
     const CompiledScene cs = compileScene(scene);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     FroxelVolumes& v = result.volumes;
-    v = allocateVolumes(makeFrameUniforms(scene, cs, request.width, request.height, fs));
+    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
+    frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
+    v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 
     const int rows = v.dims.y * v.dims.z;  // froxel rows (y, s): the voxelize and light work items

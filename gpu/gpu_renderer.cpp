@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/compile.h"
+#include "core/shadows.h"
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
@@ -112,7 +113,8 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
                      std::to_string(request.height) + "."};
     const CompiledScene cs = compileScene(scene);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
-    const shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
+    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
+    frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;  // as renderFroxelCpu
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));

@@ -5,6 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
+#include "fog_shadow.glsl"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
 
@@ -31,18 +32,28 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
 }
 
 // Height and depth fog along the camera ray between ray distances s0 and s1, lit by the
-// directional lights and the ambient.
+// directional lights (times the fog transmittance toward them, per piece) and the ambient.
 Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
-    DistantSegment seg = emptyDistantSegment();
-    for (int i = 0; i < frame.counts.z; ++i) {
-        float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, s0, s1);
-        if (len <= 0.0f) continue;
-        vec3 light = frame.ambient.rgb;
-        for (int j = 0; j < frame.counts.w; ++j) light += distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w);
-        seg = addDistantVolume(seg, volumes[i], len, light);
+    for (int piece = 0; piece < DISTANT_SHADOW_PIECES; ++piece) {
+        vec2 b = distantShadowPiece(s0, s1, piece);
+        vec3 middle = frame.cameraPosition.xyz + dir * sqrt(b.x * b.y);
+        DistantSegment seg = emptyDistantSegment();
+        for (int i = 0; i < frame.counts.z; ++i) {
+            float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
+            if (len <= 0.0f) continue;
+            vec3 light = frame.ambient.rgb;
+            for (int j = 0; j < frame.counts.w; ++j) {
+                if (lights[j].kind.x != LIGHT_DIRECTIONAL) continue;
+                vec3 toLight = -lights[j].direction.xyz;
+                light += distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w) *
+                         lightFogTransmittance(lights[j], middle, toLight, BRUME_HUGE);
+            }
+            seg = addDistantVolume(seg, volumes[i], len, light);
+        }
+        a = accumulateDistant(a, seg);
     }
-    return accumulateDistant(a, seg);
+    return a;
 }
 
 void main() {

@@ -1,8 +1,9 @@
-// Lambert direct light + ambient + emission, as core/geometry.cpp shadeSurface without shadows
-// (the shadows issue adds shadow maps). Writes radiance and view depth for the composite.
+// Lambert direct light x the fog's transmittance toward the light + ambient + emission, as
+// core/geometry.cpp shadeSurface with the froxel renderer's fog shadow. Writes radiance and view depth for the composite.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
+#include "fog_shadow.glsl"
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -19,7 +20,13 @@ void main() {
     if (dot(n, frame.cameraPosition.xyz - worldPos) < 0.0f) n = -n;
     vec3 radiance = emission + albedo * frame.ambient.rgb;
     for (int i = 0; i < frame.counts.w; ++i) {
-        radiance += lambert(albedo, n, evalLight(lights[i], worldPos));
+        LightSample ls = evalLight(lights[i], worldPos);
+        vec3 direct = lambert(albedo, n, ls);
+        if (direct == vec3(0.0f)) continue;
+        // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
+        vec3 m = abs(worldPos);
+        vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
+        radiance += direct * lightFogTransmittance(lights[i], origin, ls.toLight, ls.distance);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

@@ -1,10 +1,11 @@
-// Pass 2: source S = sigma_s (lights' in-scattering + ambient) + emission, no shadows yet
-// (core: lightRow). Froxels with sigma_t = 0 skip lighting and hold S = emission: nothing scatters
+// Pass 2: source S = sigma_s (lights' in-scattering x fog transmittance toward the light + ambient)
+// + emission (core: lightRow). Froxels with sigma_t = 0 skip lighting and hold S = emission: nothing scatters
 // where nothing extinguishes, but a purely emissive medium still glows.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
+#include "fog_shadow.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
@@ -23,7 +24,9 @@ void main() {
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
     for (int i = 0; i < frame.counts.w; ++i) {
-        perSigmaS += inScatterPerSigmaS(lights[i], evalLight(lights[i], p), viewDir, scatteringG.a);
+        LightSample ls = evalLight(lights[i], p);
+        perSigmaS += inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a) *
+                     lightFogTransmittance(lights[i], p, ls.toLight, ls.distance);
     }
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));

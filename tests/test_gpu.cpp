@@ -48,7 +48,8 @@ RenderRequest smallRequest() {
 Light sun() {
     Light l = makeLight(LightType::Directional);
     l.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
-    l.shadows = false;  // the GPU has no shadow maps yet
+    // Geometry shadows (shadow maps) are not in either froxel renderer yet; the fog's own shadow is.
+    l.shadows = false;
     return l;
 }
 
@@ -149,8 +150,9 @@ protected:
     }
 
     // Renders on both sides and checks agreement of the integrated volume and the image.
-    void expectMatchesCpu(const Scene& scene, const char* what) {
-        const RenderRequest request = smallRequest();
+    void expectMatchesCpu(const Scene& scene, const char* what, Quality quality = Quality::High) {
+        RenderRequest request = smallRequest();
+        request.quality = quality;
         const FroxelResult cpu = renderFroxelCpu(scene, request);
         auto gpu = renderer->render(scene, request, true);
         ASSERT_TRUE(gpu.ok()) << gpu.error().message;
@@ -226,7 +228,7 @@ TEST_F(GpuTest, GeometryBehindFogMatchesCpu) {
 }
 
 // A purely emissive medium (sigma_t = 0) skips lighting but still glows on both sides; and shadow
-// flags are ignored alike by both froxel renderers until shadow maps exist.
+// flags (geometry occlusion) are ignored alike by both froxel renderers until shadow maps exist.
 TEST_F(GpuTest, EmissiveOnlyMediumAndShadowFlagsMatchCpu) {
     Scene s = baseScene();
     Volume glow = box();
@@ -239,6 +241,24 @@ TEST_F(GpuTest, EmissiveOnlyMediumAndShadowFlagsMatchCpu) {
     s.lights = {l};
     s.geometry = ground();
     expectMatchesCpu(s, "emissive only + shadow flag");
+}
+
+// Volumetric shadows (shared/shadows.h): a dense faded box over height fog and the ground, a sun and
+// a point light inside the haze. At high both renderers dim the point light by the fog on its way
+// too; at low only the sun; either way they must agree, froxels and surfaces alike.
+TEST_F(GpuTest, FogShadowsOnFogAndGroundMatchCpu) {
+    Scene s = baseScene();
+    Volume dense = box();
+    dense.transform.translation = {0.0f, 2.0f, 0.0f};
+    dense.medium.scattering = glm::vec3(3.0f);
+    Volume haze = height(HeightProfile::Linear);
+    s.volumes = {dense, haze, depthFog()};
+    Light point = pointLight({1.5f, 0.6f, 0.5f}, {1.0f, 0.8f, 0.6f});
+    point.shadows = true;
+    s.lights = {sun(), point};
+    s.geometry = ground();
+    expectMatchesCpu(s, "fog shadows, high", Quality::High);
+    expectMatchesCpu(s, "fog shadows, low", Quality::Low);
 }
 
 // Past the froxel far the composite continues height and depth fog in closed form to the surface

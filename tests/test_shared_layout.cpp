@@ -131,6 +131,7 @@ void expectFrameUniforms(const std::string& p) {
     EXPECT_MEMBER(p, FrameUniforms, froxelDims);
     EXPECT_MEMBER(p, FrameUniforms, counts);
     EXPECT_MEMBER(p, FrameUniforms, jitter);
+    EXPECT_MEMBER(p, FrameUniforms, shadows);
 }
 
 void expectVolumeData(const std::string& p) {
@@ -186,7 +187,7 @@ TEST(SharedLayout, FroxelCountersStd430MatchCpp) {
 TEST(SharedLayout, SizesAreTheDocumentedOnes) {
     EXPECT_EQ(sizeof(shd::VolumeData), 176u);
     EXPECT_EQ(sizeof(shd::LightData), 80u);
-    EXPECT_EQ(sizeof(shd::FrameUniforms), 368u);
+    EXPECT_EQ(sizeof(shd::FrameUniforms), 384u);
 }
 
 }  // namespace

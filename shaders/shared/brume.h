@@ -8,5 +8,6 @@
 #include "lighting.h"
 #include "integrate.h"
 #include "distant.h"
+#include "shadows.h"
 #include "tonemap.h"
 #endif

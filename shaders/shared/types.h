@@ -54,7 +54,7 @@ struct LightData {
     ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1)
 };
 
-// Per-frame constants shared by every pass. 368 bytes.
+// Per-frame constants shared by every pass. 384 bytes.
 struct FrameUniforms {
     mat4 viewFromWorld;
     mat4 worldFromView;
@@ -67,6 +67,8 @@ struct FrameUniforms {
     ivec4 froxelDims;     // xyz: froxel grid size; w: tile size [px]
     ivec4 counts;         // x: image width, y: image height [px]; z: volume count; w: light count
     vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre)
+    ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
+                          // is always on; shadows.h); yzw unused
 };
 
 BRUME_NAMESPACE_END

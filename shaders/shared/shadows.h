@@ -1,0 +1,142 @@
+// Volumetric shadows: the fog's transmittance from a point toward a light, written once for the
+// CPU froxel renderer and the GPU passes (docs/shadows.md).
+//
+// Method: analytic optical depth. Every analytic volume's density has a closed-form integral along
+// a line, so the optical depth from a froxel (or a surface point) to the light is evaluated exactly,
+// per volume, with no light-space grid and hence no grid resolution error:
+//   box, hard edge   chord length of the ray through the oriented unit cube;
+//   box, edge fade   the chord split where two |q_a| cross (u = 2 max|q| is linear on each piece)
+//                    and the smoothstep integrated in closed form;
+//   height fog       distant.h's closed forms (exponential and linear profiles), to infinity for a sun;
+//   depth fog        not counted: it is aerial perspective measured from the camera (docs/reference.md).
+// VDB volumes contribute nothing until they have a sampler (their shadow will need a grid march).
+// The cost per froxel is O(volumes) per shadowing light; the error is the froxel's sampling alone.
+#ifndef BRUME_SHARED_SHADOWS_H
+#define BRUME_SHARED_SHADOWS_H
+
+#include "distant.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// Parameter interval [x, y] of o + s * d inside the cube [-h, h]^3; empty when x > y.
+BRUME_FUNC vec2 cubeInterval(vec3 o, vec3 d, float h) {
+    vec2 r = vec2(-BRUME_HUGE, BRUME_HUGE);
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (abs(o[a]) > h) return vec2(1.0f, 0.0f);
+            continue;
+        }
+        float ta = (-h - o[a]) / d[a];
+        float tb = (h - o[a]) / d[a];
+        r.x = max(r.x, min(ta, tb));
+        r.y = min(r.y, max(ta, tb));
+    }
+    return r;
+}
+
+// Integral of smoothstep(e0, 1, u) du from below e0 (where it is 0) up to u.
+BRUME_FUNC float smoothstepIntegralToOne(float e0, float u) {
+    if (u <= e0) return 0.0f;
+    float w = 1.0f - e0;
+    if (u >= 1.0f) return 0.5f * w + (u - 1.0f);
+    float x = (u - e0) / w;
+    return w * x * x * x * (1.0f - 0.5f * x);
+}
+
+// Integral of the faded density 1 - smoothstep(1 - fade, 1, u) over one piece [s0, s1] on which
+// u = 2 |q_a| is linear (a the dominant local axis).
+BRUME_FUNC float fadedPieceLength(vec3 lo, vec3 ld, float s0, float s1, float fade) {
+    float len = s1 - s0;
+    if (len <= 0.0f) return 0.0f;
+    float mid = 0.5f * (s0 + s1);
+    vec3 qm = abs(lo + ld * mid);
+    int a = qm.x >= qm.y && qm.x >= qm.z ? 0 : (qm.y >= qm.z ? 1 : 2);
+    float sgn = lo[a] + ld[a] * mid >= 0.0f ? 2.0f : -2.0f;
+    float u0 = sgn * (lo[a] + ld[a] * s0);
+    float u1 = sgn * (lo[a] + ld[a] * s1);
+    float e0 = 1.0f - fade;
+    // A nearly face-parallel piece: the midpoint rule (error ~ len du^2 / 4) instead of a
+    // difference of antiderivatives that would cancel in float.
+    if (abs(u1 - u0) < 1.0e-3f) return len * (1.0f - smoothstep(e0, 1.0f, 0.5f * (u0 + u1)));
+    float faded = (smoothstepIntegralToOne(e0, u1) - smoothstepIntegralToOne(e0, u0)) / (u1 - u0);
+    return len * (1.0f - faded);
+}
+
+// Integral of a box volume's density along o + s * d (d unit), s in [0, maxDist].
+BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
+    vec3 lo = vec3(v.localFromWorld * vec4(o, 1.0f));
+    vec3 ld = vec3(v.localFromWorld * vec4(d, 0.0f));
+    vec2 chord = cubeInterval(lo, ld, 0.5f);
+    chord = vec2(max(chord.x, 0.0f), min(chord.y, maxDist));
+    if (!(chord.y > chord.x)) return 0.0f;
+    float fade = v.params.x;
+    if (fade <= 0.0f) return chord.y - chord.x;
+    // Cut where |q_a| = |q_b| for each axis pair: between cuts one axis dominates.
+    float cuts[8];
+    int n = 0;
+    cuts[n++] = chord.x;
+    for (int a = 0; a < 3; ++a) {
+        for (int b = a + 1; b < 3; ++b) {
+            for (int k = 0; k < 2; ++k) {
+                float sgn = k == 0 ? -1.0f : 1.0f;
+                float denom = ld[a] - sgn * ld[b];
+                if (denom == 0.0f) continue;
+                float s = (sgn * lo[b] - lo[a]) / denom;
+                if (s > chord.x && s < chord.y) cuts[n++] = s;
+            }
+        }
+    }
+    cuts[n++] = chord.y;
+    for (int i = 1; i < n; ++i) {
+        for (int j = i; j > 0 && cuts[j - 1] > cuts[j]; --j) {
+            float t = cuts[j - 1];
+            cuts[j - 1] = cuts[j];
+            cuts[j] = t;
+        }
+    }
+    float total = 0.0f;
+    for (int i = 0; i + 1 < n; ++i) total += fadedPieceLength(lo, ld, cuts[i], cuts[i + 1], fade);
+    return total;
+}
+
+// Integral of one volume's density from p along unit dir over [0, maxDist] (BRUME_HUGE: to
+// infinity, a directional light). Depth and VDB volumes: 0 (see the header comment).
+BRUME_FUNC float shadowDensityLength(VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    int k = v.kind.x;
+    if (k == VOLUME_BOX) return boxDensityLength(v, p, dir, maxDist);
+    if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
+    if (k == VOLUME_HEIGHT_LINEAR) return heightLinearLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
+    return 0.0f;
+}
+
+// Optical depth of one volume toward a light (sigma_t x density length); sum over volumes, then
+// exp(-sum) is the transmittance. Finite or +inf, never NaN.
+BRUME_FUNC vec3 shadowOpticalDepth(VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    float len = shadowDensityLength(v, p, dir, maxDist);
+    if (len <= 0.0f) return vec3(0.0f);
+    return (vec3(v.sigmaS_g) + vec3(v.sigmaA)) * len;
+}
+
+// Whether the fog's transmittance toward light l is evaluated: directional lights always (the sun's
+// volumetric shadow); point and spot lights when the quality asks for it (frame flag).
+BRUME_FUNC bool fogShadowsLight(LightData l, int localLightsToo) {
+    return l.kind.x == LIGHT_DIRECTIONAL || localLightsToo != 0;
+}
+
+// Past the froxel far (distant.h) the camera ray is cut into this many pieces, geometric in ray
+// distance, each lit by the directional lights times the fog transmittance toward them at the
+// piece's (geometric) middle: the closed form needs a source that is constant along a piece.
+BRUME_CONST int DISTANT_SHADOW_PIECES = 8;
+
+// Ray-distance bounds [x, y] of piece i of [s0, s1] (0 < s0 < s1); the last piece ends at s1 exactly.
+BRUME_FUNC vec2 distantShadowPiece(float s0, float s1, int i) {
+    float ratio = s1 / s0;
+    float n = float(DISTANT_SHADOW_PIECES);
+    float a = i == 0 ? s0 : s0 * pow(ratio, float(i) / n);
+    float b = i + 1 == DISTANT_SHADOW_PIECES ? s1 : s0 * pow(ratio, float(i + 1) / n);
+    return vec2(a, b);
+}
+
+BRUME_NAMESPACE_END
+
+#endif

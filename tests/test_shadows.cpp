@@ -1,0 +1,240 @@
+// Volumetric shadows of the froxel renderers (shaders/shared/shadows.h, core/shadows.cpp): the
+// closed forms against the reference's independent double-precision ones, and rendered scenes
+// against the reference: the fog's shadow on the ground, and a dense block that must not leak light.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "core/geometry.h"
+#include "core/reference_detail.h"
+#include "core/render.h"
+#include "core/shadows.h"
+
+using namespace brume;
+
+namespace {
+
+Volume boxFog(glm::vec3 center, glm::vec3 size, float edgeFade, float sigmaS, float sigmaA) {
+    Volume v;
+    v.type = VolumeType::Box;
+    v.transform.translation = center;
+    v.transform.scale = size;
+    v.edge_fade = edgeFade;
+    v.medium.scattering = glm::vec3(sigmaS);
+    v.medium.absorption = glm::vec3(sigmaA);
+    return v;
+}
+
+Light sunFrom(glm::vec3 direction) {
+    Light l = makeLight(LightType::Directional);
+    l.direction = glm::normalize(direction);
+    l.intensity = 2.0f;
+    return l;
+}
+
+Geometry groundPlane(float albedo) {
+    Geometry g;
+    g.type = GeometryType::Plane;
+    g.albedo = glm::vec3(albedo);
+    return g;
+}
+
+RenderRequest request(int w, int h, Quality q) {
+    RenderRequest r;
+    r.width = w;
+    r.height = h;
+    r.quality = q;
+    r.threads = 2;
+    return r;
+}
+
+// Every kind of volume that shadows: faded and hard rotated boxes, both height profiles, and a
+// depth fog that must not count.
+CompiledScene mixedVolumes() {
+    Scene s;
+    Volume faded = boxFog({0.3f, 1.2f, -0.4f}, {3.0f, 2.0f, 2.5f}, 0.4f, 0.3f, 0.05f);
+    faded.transform.rotation_deg = {10.0f, 35.0f, -5.0f};
+    Volume hard = boxFog({-1.0f, 0.5f, 1.0f}, {1.0f, 1.5f, 2.0f}, 0.0f, 0.5f, 0.1f);
+    hard.transform.rotation_deg = {0.0f, -20.0f, 0.0f};
+    Volume expo;
+    expo.type = VolumeType::Height;
+    expo.base_height = 0.3f;
+    expo.falloff = 0.7f;
+    Volume linear = expo;
+    linear.profile = HeightProfile::Linear;
+    linear.transition_height = 2.0f;
+    Volume depth;
+    depth.type = VolumeType::Depth;
+    depth.visibility_distance = 5.0f;
+    s.volumes = {faded, hard, expo, linear, depth};
+    s.lights = {sunFrom({0.3f, -1.0f, 0.2f})};
+    return compileScene(s);
+}
+
+}  // namespace
+
+// The shared float closed forms equal the reference's double ones (written independently) on random
+// segments and half-lines through every volume kind: both the sun's case (to infinity) and a point
+// light's (a finite segment). Breaking any closed form (a wrong fade integral, a missing volume,
+// depth fog counted) moves the transmittance by far more than the bound.
+TEST(FogShadowClosedForm, MatchesTheReferenceOnRandomRays) {
+    const CompiledScene cs = mixedVolumes();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    double worst = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 p(2.5f * u(rng), 1.2f + 1.5f * u(rng), 2.5f * u(rng));
+        glm::vec3 dir(u(rng), u(rng), u(rng));
+        if (glm::length(dir) < 0.1f) continue;
+        dir = glm::normalize(dir);
+        // The sun is above the horizon; point lights are anywhere, 0.5..6 m away.
+        const bool sun = i % 2 == 0;
+        if (sun) dir.y = std::abs(dir.y) + 0.05f, dir = glm::normalize(dir);
+        const float dist = sun ? shd::BRUME_HUGE : 3.25f + 2.75f * u(rng);
+        shd::LightData l = cs.lights[0];
+        l.kind.x = sun ? shd::LIGHT_DIRECTIONAL : shd::LIGHT_POINT;
+        const glm::vec3 got = lightFogTransmittance(cs, l, p, dir, dist, 1);
+        const glm::vec3 want = reference::fogTransmittance(cs, p, dir, dist);
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, static_cast<double>(std::abs(got[c] - want[c])));
+    }
+    std::printf("worst |T_shared - T_reference| over 2000 rays: %.2e\n", worst);
+    EXPECT_LT(worst, 2e-5);
+}
+
+// Point and spot lights are fog-shadowed only when the quality asks (off in low); the sun always.
+TEST(FogShadowClosedForm, LocalLightsOnlyWhenAsked) {
+    const CompiledScene cs = mixedVolumes();
+    shd::LightData point = cs.lights[0];
+    point.kind.x = shd::LIGHT_POINT;
+    const glm::vec3 p(0.3f, 1.2f, -0.4f), up(0.0f, 1.0f, 0.0f);
+    EXPECT_EQ(lightFogTransmittance(cs, point, p, up, 2.0f, 0), glm::vec3(1.0f));
+    EXPECT_LT(lightFogTransmittance(cs, point, p, up, 2.0f, 1).x, 0.9f);
+    EXPECT_LT(lightFogTransmittance(cs, cs.lights[0], p, up, shd::BRUME_HUGE, 0).x, 0.9f);
+    EXPECT_FALSE(localLightFogShadows(Quality::Low));
+    EXPECT_TRUE(localLightFogShadows(Quality::High));
+}
+
+namespace {
+
+// A 6 x 2 x 6 m fog box (sigma_t 0.55/m) floating 2-4 m above a bright ground under a slanted sun;
+// the camera stands below the box's bottom, so it sees the box's shadow on the ground (partly
+// under the box, partly beside it) with little fog in front.
+Scene boxOverGround() {
+    Scene s;
+    s.camera.position = {6.0f, 1.6f, 10.0f};
+    s.camera.target = {2.0f, 0.0f, 0.0f};
+    s.camera.far = 60.0f;
+    s.ambient = glm::vec3(0.02f);
+    s.lights = {sunFrom({0.8f, -1.0f, 0.1f})};
+    s.volumes = {boxFog({0.0f, 3.0f, 0.0f}, {6.0f, 2.0f, 6.0f}, 0.1f, 0.5f, 0.05f)};
+    s.geometry = {groundPlane(0.6f)};
+    return s;
+}
+
+}  // namespace
+
+// "The ground's shadowed area within 5% of the reference": the pixels of ground that the fog
+// darkens by more than 10% in the reference (its shadow); their mean radiance must match within 5%.
+// Without fog shadows on surfaces the shadowed ground comes out as bright as the sunlit ground, which
+// the second check shows is far more than 5% off.
+TEST(FogShadowOnGround, ShadowedAreaWithinFivePercentOfTheReference) {
+    const Scene scene = boxOverGround();
+    const RenderRequest req = request(160, 90, Quality::High);
+    const Image ref = renderReference(scene, req);
+    const Image froxel = renderFroxelCpu(scene, req).image;
+    Scene noFog = scene;
+    noFog.volumes.clear();
+    const Image bare = renderReference(noFog, req);  // the ground without any fog: shadow-free
+    double refSum = 0.0, froxelSum = 0.0, bareSum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < ref.pixels.size(); ++i) {
+        if (!(ref.pixels[i].x < 0.9f * bare.pixels[i].x)) continue;
+        refSum += ref.pixels[i].x;
+        froxelSum += froxel.pixels[i].x;
+        bareSum += bare.pixels[i].x;
+        ++count;
+    }
+    ASSERT_GT(count, 300);  // the shadow covers a good part of the image
+    const double err = std::abs(froxelSum - refSum) / refSum;
+    std::printf("shadowed ground: %d px, froxel vs reference %.4f, unshadowed ground %.3f brighter; whole image %.4f\n",
+                count, err, bareSum / refSum - 1.0, relativeMeanAbsError(froxel, ref));
+    EXPECT_LT(err, 0.05);
+    EXPECT_GT(bareSum / refSum, 1.2);  // what a renderer without fog shadows would be off by, at least
+}
+
+// A dense block (sigma_t = 40/m, 1 m thick: optical depth 40) over height fog and the ground: every
+// froxel whose path to the sun crosses the block's core gets no sun (source = sigma_s x ambient
+// alone), and neither does the ground beneath it. Without volumetric shadows both get full sun.
+TEST(FogShadowDenseBlock, NoLightLeaksThrough) {
+    Scene s;
+    s.camera.position = {0.0f, 2.0f, 9.0f};
+    s.camera.target = {0.0f, 0.5f, 0.0f};
+    s.camera.far = 40.0f;
+    s.ambient = glm::vec3(0.0f);
+    const glm::vec3 sunDir = glm::normalize(glm::vec3(0.0f, -1.0f, 0.0f));
+    s.lights = {sunFrom(sunDir)};
+    Volume block = boxFog({0.0f, 3.0f, 0.0f}, {3.0f, 1.0f, 3.0f}, 0.0f, 20.0f, 20.0f);
+    Volume haze;
+    haze.type = VolumeType::Height;
+    haze.base_height = 1.0f;
+    haze.falloff = 2.0f;
+    haze.medium.scattering = glm::vec3(0.2f);
+    s.volumes = {block, haze};
+    s.geometry = {groundPlane(0.5f)};
+    const FroxelResult r = renderFroxelCpu(s, request(96, 54, Quality::High));
+    const FroxelVolumes& v = r.volumes;
+    int under = 0, lit = 0;
+    for (int z = 0; z < v.dims.z; ++z)
+        for (int y = 0; y < v.dims.y; ++y)
+            for (int x = 0; x < v.dims.x; ++x) {
+                const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(x, y, z) + glm::vec3(0.5f), v.frame);
+                const size_t i = (static_cast<size_t>(z) * static_cast<size_t>(v.dims.y) + static_cast<size_t>(y)) *
+                                     static_cast<size_t>(v.dims.x) + static_cast<size_t>(x);
+                if (p.y > 2.4f || v.mediaExtinction[i].x <= 0.0f) continue;
+                // Beneath the block's core (10 cm inside its sides): the sun crosses 1 m of it.
+                if (std::abs(p.x) < 1.4f && std::abs(p.z) < 1.4f) {
+                    ++under;
+                    EXPECT_LT(v.source[i].x, 1e-12f) << "light leaked into froxel " << x << "," << y << "," << z;
+                } else if (std::abs(p.x) > 1.6f || std::abs(p.z) > 1.6f) {
+                    ++lit;
+                    EXPECT_GT(v.source[i].x, 0.0f);
+                }
+            }
+    EXPECT_GT(under, 50);
+    EXPECT_GT(lit, 200);
+    // The ground beneath the block is black (no ambient, no haze in the way); beside it, sunlit.
+    s.volumes = {block};
+    const Image img = renderFroxelCpu(s, request(96, 54, Quality::High)).image;
+    const GeometrySet geometry(s.geometry);
+    const shd::FrameUniforms& f = v.frame;
+    int dark = 0, sunlit = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const glm::vec3 viewRay = shd::viewRayFromPixel(glm::vec2(x, y) + glm::vec2(0.5f), f);
+            const glm::vec3 dir = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(viewRay, 0.0f)));
+            const SurfaceHit hit = geometry.intersect(Ray{s.camera.position, dir}, 30.0f);  // inside camera.far
+            if (!hit.hit()) continue;
+            const glm::vec3 q = hit.position;
+            if (std::abs(q.x) < 1.4f && std::abs(q.z) < 1.4f) {
+                ++dark;
+                EXPECT_LT(img.at(x, y).x, 1e-6f) << "sun leaked onto the ground at pixel " << x << "," << y;
+            } else if (std::abs(q.x) > 1.6f || std::abs(q.z) > 1.6f) {
+                ++sunlit;
+                EXPECT_GT(img.at(x, y).x, 0.1f);
+            }
+        }
+    EXPECT_GT(dark, 30);
+    EXPECT_GT(sunlit, 50);
+}
+
+// With fog shadows the froxel renderer approaches the reference: on the box-over-ground scene the
+// whole image at high is within 3% of it.
+TEST(FogShadowOnGround, HighIsWithinThreePercentOfTheReference) {
+    const Scene scene = boxOverGround();
+    const RenderRequest req = request(160, 90, Quality::High);
+    const double err = relativeMeanAbsError(renderFroxelCpu(scene, req).image, renderReference(scene, req));
+    std::printf("box over ground, high: relative mean abs error %.4f\n", err);
+    EXPECT_LT(err, 0.03);
+}
