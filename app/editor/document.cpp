@@ -104,10 +104,9 @@ Result<void> Document::apply(const Action& a) {
     if (a.verb == "save") return save(a.args);
     if (!a.args.empty()) return usage(a.verb, "(no arguments)");
     if (a.verb == "begin") {
-        groupOpen_ = true;
-        groupSnapshotTaken_ = false;
+        if (groupDepth_++ == 0) groupSnapshotTaken_ = false;
     } else if (a.verb == "end") {
-        groupOpen_ = false;
+        groupDepth_ = groupDepth_ > 0 ? groupDepth_ - 1 : 0;
     } else if (a.verb == "undo") {
         undo();
     } else if (a.verb == "redo") {
@@ -120,9 +119,9 @@ Result<void> Document::apply(const Action& a) {
 
 void Document::commit(Scene next) {
     if (next == scene_) return;
-    if (!groupOpen_ || !groupSnapshotTaken_) {
+    if (groupDepth_ == 0 || !groupSnapshotTaken_) {
         undo_.push_back(scene_);
-        groupSnapshotTaken_ = groupOpen_;
+        groupSnapshotTaken_ = groupDepth_ > 0;
     }
     redo_.clear();
     scene_ = std::move(next);
@@ -132,7 +131,7 @@ void Document::commit(Scene next) {
 void Document::replaceScene(const Scene& scene) { commit(scene); }
 
 void Document::undo() {
-    groupOpen_ = false;
+    groupDepth_ = 0;
     if (undo_.empty()) return;
     redo_.push_back(std::move(scene_));
     scene_ = std::move(undo_.back());
@@ -141,7 +140,7 @@ void Document::undo() {
 }
 
 void Document::redo() {
-    groupOpen_ = false;
+    groupDepth_ = 0;
     if (redo_.empty()) return;
     undo_.push_back(std::move(scene_));
     scene_ = std::move(redo_.back());

@@ -74,7 +74,7 @@ private:
     std::string path_;
     std::vector<Scene> undo_;
     std::vector<Scene> redo_;
-    bool groupOpen_ = false;
+    int groupDepth_ = 0;  // begin/end nest: a camera move inside a drag stays in the drag's step
     bool groupSnapshotTaken_ = false;
     uint64_t revision_ = 0;
 };
