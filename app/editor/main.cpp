@@ -15,6 +15,7 @@
 #include <imgui.h>
 #include <stb/stb_image_write.h>
 
+#include "core/settings.h"
 #include "editor.h"
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
@@ -38,7 +39,7 @@ struct Options {
     bool hideUi = false;
     bool recover = false;
     bool discardRecovery = false;
-    double autosaveSeconds = 5.0;
+    double autosaveSeconds = settings::editor_autosave_seconds.value();
     bool validation = false;
 };
 
@@ -101,7 +102,9 @@ int main(int argc, char** argv) {
     app.add_flag("--hide-ui", o.hideUi, "Show only the viewport (screenshots comparable with brume render).");
     app.add_flag("--recover", o.recover, "Recover an autosave left by a crash without asking.");
     app.add_flag("--discard-recovery", o.discardRecovery, "Delete an autosave left by a crash without asking.");
-    app.add_option("--autosave-seconds", o.autosaveSeconds, "Autosave interval [s].")->check(CLI::Range(0.1, 3600.0));
+    const Setting& autosave = settings::editor_autosave_seconds;
+    app.add_option("--autosave-seconds", o.autosaveSeconds, std::string(autosave.help) + " [s]")
+        ->check(CLI::Range(autosave.min, autosave.max));
     app.add_flag("--validation", o.validation, "Enable the Vulkan validation layer; exit 1 if it reports anything.");
     try {
         app.parse(argc, argv);
