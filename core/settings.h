@@ -121,6 +121,8 @@ inline constexpr std::array kAll = {
 // clang-format off
 inline constexpr Setting cli_exposure     {"--exposure", K::Number, "", 1e-6, 1e6, {1}, "", "Multiplies radiance before the PNG tone curve; EXR is written linear and unscaled."};
 inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames of temporal accumulation (froxel renderer; the reference ignores it)."};
+// brume-editor options.
+inline constexpr Setting editor_autosave_seconds {"--autosave-seconds", K::Number, "s", 0.1, 3600, {5}, "", "Longest time unsaved changes wait before the editor writes them to its recovery file."};
 inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};
 // clang-format on
 

@@ -1,0 +1,45 @@
+#include "autosave.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+#include "io/scene_json.h"
+
+namespace brume::editor {
+
+std::string recoveryPathFor(const std::string& scenePath) {
+    if (!scenePath.empty()) return scenePath + ".recovery.json";
+    std::filesystem::path dir;
+    if (const char* state = std::getenv("XDG_STATE_HOME"); state && *state) dir = state;
+    else if (const char* home = std::getenv("HOME"); home && *home) dir = std::filesystem::path(home) / ".local/state";
+    else dir = std::filesystem::temp_directory_path();
+    dir /= "brume";
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    return (dir / "untitled.recovery.json").string();
+}
+
+Result<void> Autosave::tick(const Document& doc, double now) {
+    if (!doc.dirty()) {
+        if (fileExists_) discard();
+        return {};
+    }
+    if (doc.revision() == writtenRevision_ || now - lastWrite_ < interval_) return {};
+    lastWrite_ = now;
+    writtenRevision_ = doc.revision();
+    Result<void> r = saveSceneFile(doc.scene(), path_);
+    if (!r) return Error{"Autosave failed: " + r.error().message};
+    fileExists_ = true;
+    ++writes_;
+    return {};
+}
+
+void Autosave::discard() {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+    fileExists_ = false;
+    writtenRevision_ = ~uint64_t(0);
+}
+
+}  // namespace brume::editor

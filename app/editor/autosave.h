@@ -1,0 +1,39 @@
+// Autosave and crash recovery. While the document has unsaved changes, its scene is written
+// (atomically) to a recovery file beside the scene every `interval` seconds at most, so a crash
+// loses at most one interval of work. Saving or a clean exit removes the file; finding it at start
+// means the last session ended without either, and the editor offers to recover it.
+#pragma once
+
+#include <string>
+
+#include "document.h"
+
+namespace brume::editor {
+
+// "dir/scene.json" -> "dir/scene.json.recovery.json" (beside the scene, so relative VDB paths
+// resolve the same); an untitled scene uses $XDG_STATE_HOME/brume (or ~/.local/state/brume).
+std::string recoveryPathFor(const std::string& scenePath);
+
+class Autosave {
+public:
+    Autosave(std::string recoveryPath, double intervalSeconds)
+        : path_(std::move(recoveryPath)), interval_(intervalSeconds) {}
+
+    // Call every frame with a monotonic clock in seconds. Writes when the document is dirty, has
+    // changed since the last autosave and the interval has passed; removes the file once it is clean.
+    Result<void> tick(const Document& doc, double nowSeconds);
+    // Removes the recovery file (clean exit).
+    void discard();
+    const std::string& path() const { return path_; }
+    int writes() const { return writes_; }
+
+private:
+    std::string path_;
+    double interval_;
+    double lastWrite_ = -1.0e30;
+    uint64_t writtenRevision_ = ~uint64_t(0);
+    bool fileExists_ = false;
+    int writes_ = 0;
+};
+
+}  // namespace brume::editor

@@ -1,0 +1,304 @@
+#include "document.h"
+
+#include <charconv>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "io/scene_json.h"
+
+namespace brume::editor {
+namespace {
+
+using json = nlohmann::json;
+
+Error usage(const std::string& verb, const std::string& form) {
+    return Error{"The action \"" + verb + "\" takes: " + verb + " " + form + "."};
+}
+
+bool parseNumber(const std::string& s, double& out) {
+    const char* end = s.data() + s.size();
+    auto r = std::from_chars(s.data(), end, out);
+    return r.ec == std::errc() && r.ptr == end;
+}
+
+bool parseIndex(const std::string& s, size_t& out) {
+    const char* end = s.data() + s.size();
+    auto r = std::from_chars(s.data(), end, out);
+    return r.ec == std::errc() && r.ptr == end;
+}
+
+// "volumes[0].medium.phase_g" -> "/volumes/0/medium/phase_g".
+Result<json::json_pointer> pointerOf(const std::string& path) {
+    std::string p;
+    for (char c : path) {
+        if (c == '.' || c == '[') p += '/';
+        else if (c == ']') continue;
+        else if (c == '/' || c == '~' || c == ' ') return Error{"\"" + path + "\" is not a settings path."};
+        else p += c;
+    }
+    if (path.empty()) return Error{"The action \"set\" needs a settings path."};
+    return json::json_pointer("/" + p);
+}
+
+// The JSON value of the words typed after the path, shaped like the value it replaces.
+Result<json> valueFromWords(const std::string& path, const std::vector<std::string>& words, const json* old) {
+    std::vector<double> numbers;
+    for (const std::string& w : words) {
+        double d = 0.0;
+        if (!parseNumber(w, d)) break;
+        numbers.push_back(d);
+    }
+    const bool allNumbers = numbers.size() == words.size() && !words.empty();
+    if (old && old->is_array()) {
+        if (!allNumbers || numbers.size() != old->size())
+            return Error{path + ": expected " + std::to_string(old->size()) + " numbers."};
+        return json(numbers);
+    }
+    if (old && old->is_number()) {
+        if (!allNumbers || numbers.size() != 1) return Error{path + ": expected one number."};
+        return json(numbers[0]);
+    }
+    if (old && old->is_boolean()) {
+        if (words.size() != 1 || (words[0] != "true" && words[0] != "false"))
+            return Error{path + ": expected true or false."};
+        return json(words[0] == "true");
+    }
+    if (old && !old->is_string()) return Error{path + ": this is a group of settings, not one value."};
+    if (!old && allNumbers) return numbers.size() == 1 ? json(numbers[0]) : json(numbers);
+    if (!old && words.size() == 1 && (words[0] == "true" || words[0] == "false")) return json(words[0] == "true");
+    std::string text;
+    for (const std::string& w : words) text += (text.empty() ? "" : " ") + w;
+    return json(text);
+}
+
+Result<std::string> collectionOf(const std::string& kind) {
+    if (kind == "volume") return std::string("volumes");
+    if (kind == "light") return std::string("lights");
+    if (kind == "geometry") return std::string("geometry");
+    return Error{"\"" + kind + "\" is not a kind of object: use volume, light or geometry."};
+}
+
+Result<Scene> parseEdited(const json& j, const Scene& current) {
+    Result<Scene> s = parseScene(j.dump(), "edit");
+    if (!s) return s.error();
+    s.value().baseDir = current.baseDir;
+    return s;
+}
+
+}  // namespace
+
+Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), saved_(scene_), path_(std::move(path)) {}
+
+bool Document::isDocumentVerb(const std::string& verb) {
+    for (const char* v : {"add", "delete", "duplicate", "rename", "set", "begin", "end", "undo", "redo", "save"})
+        if (verb == v) return true;
+    return false;
+}
+
+Result<void> Document::apply(const Action& a) {
+    if (a.verb == "add") return add(a.args);
+    if (a.verb == "delete" || a.verb == "duplicate") return removeOrDuplicate(a.verb, a.args);
+    if (a.verb == "rename") return rename(a.args);
+    if (a.verb == "set") return set(a.args);
+    if (a.verb == "save") return save(a.args);
+    if (!a.args.empty()) return usage(a.verb, "(no arguments)");
+    if (a.verb == "begin") {
+        if (groupDepth_++ == 0) groupSnapshotTaken_ = false;
+    } else if (a.verb == "end") {
+        groupDepth_ = groupDepth_ > 0 ? groupDepth_ - 1 : 0;
+    } else if (a.verb == "undo") {
+        undo();
+    } else if (a.verb == "redo") {
+        redo();
+    } else {
+        return Error{"Unknown action \"" + a.verb + "\"."};
+    }
+    return {};
+}
+
+void Document::commit(Scene next) {
+    if (next == scene_) return;
+    if (groupDepth_ == 0 || !groupSnapshotTaken_) {
+        undo_.push_back(scene_);
+        groupSnapshotTaken_ = groupDepth_ > 0;
+    }
+    redo_.clear();
+    scene_ = std::move(next);
+    ++revision_;
+}
+
+void Document::replaceScene(const Scene& scene) { commit(scene); }
+
+void Document::undo() {
+    groupDepth_ = 0;
+    if (undo_.empty()) return;
+    redo_.push_back(std::move(scene_));
+    scene_ = std::move(undo_.back());
+    undo_.pop_back();
+    ++revision_;
+}
+
+void Document::redo() {
+    groupDepth_ = 0;
+    if (redo_.empty()) return;
+    undo_.push_back(std::move(scene_));
+    scene_ = std::move(redo_.back());
+    redo_.pop_back();
+    ++revision_;
+}
+
+Result<void> Document::add(const std::vector<std::string>& a) {
+    if (a.size() < 2 || a.size() > 4) return usage("add", "volume|light|geometry TYPE [NAME]");
+    const std::string name = a.size() > 2 ? a[2] : a[1];
+    Scene next = scene_;
+    if (a[0] == "volume") {
+        Volume v;
+        if (a[1] == "box") v.type = VolumeType::Box;
+        else if (a[1] == "height") v.type = VolumeType::Height;
+        else if (a[1] == "depth") v.type = VolumeType::Depth;
+        else if (a[1] == "vdb" && a.size() == 4) v.type = VolumeType::Vdb, v.file = a[3];
+        else return Error{"\"" + a[1] + "\" is not a volume type to add: use box, height, depth or vdb NAME FILE."};
+        v.name = name;
+        next.volumes.push_back(v);
+    } else if (a[0] == "light") {
+        LightType t = LightType::Directional;
+        if (a[1] == "point") t = LightType::Point;
+        else if (a[1] == "spot") t = LightType::Spot;
+        else if (a[1] != "directional") return Error{"\"" + a[1] + "\" is not a light type: use directional, point or spot."};
+        Light l = makeLight(t);
+        l.name = name;
+        next.lights.push_back(l);
+    } else if (a[0] == "geometry") {
+        Geometry g;
+        if (a[1] == "box") g.type = GeometryType::Box;
+        else if (a[1] == "sphere") g.type = GeometryType::Sphere;
+        else if (a[1] != "plane") return Error{"\"" + a[1] + "\" is not a geometry type: use plane, box or sphere."};
+        g.name = name;
+        next.geometry.push_back(g);
+    } else {
+        return collectionOf(a[0]).error();
+    }
+    commit(std::move(next));
+    return {};
+}
+
+template <class T>
+Result<void> editList(std::vector<T>& list, const std::string& verb, size_t i) {
+    if (i >= list.size())
+        return Error{"There is no element " + std::to_string(i) + " (the list has " + std::to_string(list.size()) + ")."};
+    if (verb == "delete") {
+        list.erase(list.begin() + static_cast<std::ptrdiff_t>(i));
+    } else {
+        T copy = list[i];
+        copy.name += " copy";
+        list.insert(list.begin() + static_cast<std::ptrdiff_t>(i) + 1, copy);
+    }
+    return {};
+}
+
+Result<void> Document::removeOrDuplicate(const std::string& verb, const std::vector<std::string>& a) {
+    size_t i = 0;
+    if (a.size() != 2 || !parseIndex(a[1], i)) return usage(verb, "volume|light|geometry INDEX");
+    Scene next = scene_;
+    Result<void> r = a[0] == "volume" ? editList(next.volumes, verb, i)
+                     : a[0] == "light" ? editList(next.lights, verb, i)
+                     : a[0] == "geometry" ? editList(next.geometry, verb, i)
+                                          : Result<void>(collectionOf(a[0]).error());
+    if (!r) return r;
+    commit(std::move(next));
+    return {};
+}
+
+Result<void> Document::rename(const std::vector<std::string>& a) {
+    size_t i = 0;
+    if (a.size() != 3 || !parseIndex(a[1], i)) return usage("rename", "volume|light|geometry INDEX NAME");
+    Result<std::string> c = collectionOf(a[0]);
+    if (!c) return c.error();
+    return set({c.value() + "[" + a[1] + "].name", a[2]});
+}
+
+Result<void> Document::set(const std::vector<std::string>& a) {
+    if (a.size() < 2) return usage("set", "PATH VALUE...");
+    Result<json::json_pointer> ptr = pointerOf(a[0]);
+    if (!ptr) return ptr.error();
+    json j = json::parse(sceneToJson(scene_));
+    const json::json_pointer parent = ptr.value().parent_pointer();
+    if (!j.contains(parent) || !j.at(parent).is_object())
+        return Error{"edit: " + a[0] + ": there is no such setting in this scene."};
+    const json* old = j.contains(ptr.value()) ? &j.at(ptr.value()) : nullptr;
+    Result<json> v = valueFromWords(a[0], {a.begin() + 1, a.end()}, old);
+    if (!v) return Error{"edit: " + v.error().message};
+    j[ptr.value()] = v.value();
+    Result<Scene> next = parseEdited(j, scene_);
+    if (!next) return next.error();
+    commit(std::move(next.value()));
+    return {};
+}
+
+Result<std::string> Document::valueText(const std::string& path) const {
+    Result<json::json_pointer> ptr = pointerOf(path);
+    if (!ptr) return ptr.error();
+    const json j = json::parse(sceneToJson(scene_));
+    if (!j.contains(ptr.value())) return Error{path + ": there is no such setting in this scene."};
+    return j.at(ptr.value()).dump();
+}
+
+Result<void> Document::save(const std::vector<std::string>& a) {
+    if (a.size() > 1) return usage("save", "[PATH]");
+    const std::string target = a.empty() ? path_ : a[0];
+    if (target.empty()) return Error{"This scene has no file yet: use Save As (save PATH)."};
+    Result<void> r = saveSceneFile(scene_, target);
+    if (!r) return r;
+    path_ = target;
+    saved_ = scene_;
+    return {};
+}
+
+Result<Action> parseAction(const std::string& line) {
+    Action a;
+    std::vector<std::string> words;
+    std::string cur;
+    bool inWord = false, quoted = false;
+    for (size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '\\' && i + 1 < line.size()) cur += line[++i];
+            else if (c == '"') quoted = false;
+            else cur += c;
+        } else if (c == '"') {
+            quoted = inWord = true;
+        } else if (c == ' ' || c == '\t' || c == '\r') {
+            if (inWord) words.push_back(std::move(cur)), cur.clear();
+            inWord = false;
+        } else if (c == '#' && !inWord && words.empty()) {
+            break;
+        } else {
+            cur += c;
+            inWord = true;
+        }
+    }
+    if (quoted) return Error{"Unterminated quote in the action \"" + line + "\"."};
+    if (inWord) words.push_back(std::move(cur));
+    if (words.empty()) return a;
+    a.verb = words[0];
+    a.args.assign(words.begin() + 1, words.end());
+    return a;
+}
+
+std::string formatAction(const Action& action) {
+    std::string line = action.verb;
+    for (const std::string& w : action.args) {
+        const bool plain = !w.empty() && w.find_first_of(" \t\"\\#") == std::string::npos;
+        if (plain) {
+            line += " " + w;
+            continue;
+        }
+        line += " \"";
+        for (char c : w) line += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+        line += "\"";
+    }
+    return line;
+}
+
+}  // namespace brume::editor

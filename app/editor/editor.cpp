@@ -1,0 +1,170 @@
+#include "editor.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/quality.h"
+#include "tonemap.h"
+
+namespace brume::editor {
+namespace {
+
+bool number(const std::string& s, double& out) {
+    const char* end = s.data() + s.size();
+    auto r = std::from_chars(s.data(), end, out);
+    return r.ec == std::errc() && r.ptr == end && std::isfinite(out);
+}
+
+std::string vec3Words(glm::vec3 v) {
+    auto f = [](float x) {
+        char buf[32];
+        auto r = std::to_chars(buf, buf + sizeof buf, x);
+        return std::string(buf, r.ptr);
+    };
+    return f(v.x) + " " + f(v.y) + " " + f(v.z);
+}
+
+// Same bytes as the PNG writer: display transform, then round to 8 bits.
+uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+}  // namespace
+
+Editor::Editor(Document doc, Autosave autosave, Quality quality)
+    : doc_(std::move(doc)), autosave_(std::move(autosave)), quality_(quality) {}
+
+Result<void> Editor::run(const std::string& line) {
+    Result<Action> a = parseAction(line);
+    if (!a) return a.error();
+    if (a.value().verb.empty()) return {};
+    return run(a.value());
+}
+
+Result<void> Editor::run(const Action& a) {
+    Result<void> r = dispatch(a);
+    if (r && recorder) recorder(a);
+    return r;
+}
+
+Result<void> Editor::dispatch(const Action& a) {
+    if (Document::isDocumentVerb(a.verb)) {
+        Result<void> r = doc_.apply(a);
+        // Deleting can leave the selection past the end of its list.
+        const Scene& s = doc_.scene();
+        const size_t n = selection_.kind == Kind::Volume ? s.volumes.size()
+                         : selection_.kind == Kind::Light ? s.lights.size()
+                                                          : s.geometry.size();
+        if (selection_.kind != Kind::None && selection_.index >= n) selection_.kind = Kind::None;
+        return r;
+    }
+    double v = 0.0;
+    if (a.verb == "select") {
+        if (a.args.size() == 1 && a.args[0] == "none") return selection_.kind = Kind::None, Result<void>();
+        if (a.args.size() != 2 || !number(a.args[1], v) || v < 0) return Error{"select takes: select volume|light|geometry INDEX."};
+        const Kind k = a.args[0] == "volume" ? Kind::Volume : a.args[0] == "light" ? Kind::Light
+                     : a.args[0] == "geometry" ? Kind::Geometry : Kind::None;
+        if (k == Kind::None) return Error{"select takes: select volume|light|geometry INDEX."};
+        selection_ = {k, static_cast<size_t>(v)};
+        return {};
+    }
+    if (a.verb == "orbit" || a.verb == "pan" || a.verb == "zoom") return camera(a);
+    if (a.verb == "quality") {
+        Quality q;
+        if (a.args.size() != 1 || !parseQuality(a.args[0], q)) return Error{"quality takes one of: low, medium, high, ultra."};
+        quality_ = q;
+        return {};
+    }
+    if (a.verb == "wait") {
+        if (a.args.size() != 1 || !number(a.args[0], v) || v < 0) return Error{"wait takes a number of seconds."};
+        waitSeconds = v;
+        return {};
+    }
+    if (a.verb == "screenshot") {
+        if (a.args.size() != 1) return Error{"screenshot takes: screenshot FILE.png."};
+        screenshotRequest = a.args[0];
+        return {};
+    }
+    if (a.verb == "quit") return quitRequested = true, Result<void>();
+    return Error{"Unknown action \"" + a.verb + "\"."};
+}
+
+Result<void> Editor::setCamera(const Camera& c) {
+    // Position and target move together: one undo step (nested in a drag's group, if any).
+    auto words = [](const std::string& path, glm::vec3 v) {
+        Result<Action> a = parseAction("set " + path + " " + vec3Words(v));
+        return a.value();
+    };
+    (void)doc_.apply({"begin", {}});
+    Result<void> r = doc_.apply(words("camera.position", c.position));
+    if (r) r = doc_.apply(words("camera.target", c.target));
+    (void)doc_.apply({"end", {}});
+    return r;
+}
+
+Result<void> Editor::camera(const Action& a) {
+    double x = 0.0, y = 0.0;
+    const size_t want = a.verb == "zoom" ? 1 : 2;
+    if (a.args.size() != want || !number(a.args[0], x) || (want == 2 && !number(a.args[1], y)))
+        return Error{"Camera actions take: orbit YAW_DEG PITCH_DEG, pan RIGHT UP, zoom FACTOR."};
+    Camera c = doc_.scene().camera;
+    const glm::vec3 up = glm::normalize(c.up);
+    glm::vec3 offset = c.position - c.target;
+    const float dist = glm::length(offset);
+    const glm::vec3 forward = -offset / dist;
+    const glm::vec3 right = glm::normalize(glm::cross(forward, up));
+    const glm::vec3 camUp = glm::cross(right, forward);
+    if (a.verb == "orbit") {
+        glm::mat4 yaw = glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(x)), up);
+        offset = glm::vec3(yaw * glm::vec4(offset, 0.0f));
+        // Pitch stops 1 degree short of the poles, where the view would flip about `up`.
+        const float elevation = std::asin(std::clamp(glm::dot(glm::normalize(offset), up), -1.0f, 1.0f));
+        const float limit = glm::radians(89.0f);
+        const float pitch = std::clamp(elevation + glm::radians(static_cast<float>(y)), -limit, limit) - elevation;
+        const glm::vec3 r = glm::normalize(glm::cross(up, offset));
+        offset = glm::vec3(glm::rotate(glm::mat4(1.0f), pitch, r) * glm::vec4(offset, 0.0f));
+        c.position = c.target + offset;
+    } else if (a.verb == "pan") {
+        const glm::vec3 d = (right * static_cast<float>(x) + camUp * static_cast<float>(y)) * dist;
+        c.position += d;
+        c.target += d;
+    } else {
+        if (x <= 0.0) return Error{"zoom takes a factor above 0."};
+        c.position = c.target + offset * static_cast<float>(x);
+    }
+    return setCamera(c);
+}
+
+Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
+    const bool sizeChanged = viewport_.width != width || viewport_.height != height;
+    if (!force && !sizeChanged && renderedRevision_ == doc_.revision() && renderedQuality_ == quality_) return {};
+    RenderRequest request;
+    request.width = width;
+    request.height = height;
+    request.quality = quality_;
+    Result<gpu::GpuRender> out = renderer.render(doc_.scene(), request);
+    renderedRevision_ = doc_.revision();
+    renderedQuality_ = quality_;
+    if (!out) return out.error();
+    viewport_.width = width;
+    viewport_.height = height;
+    viewport_.pixels.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
+    const Image& img = out.value().image;
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        const glm::vec3 d = shd::displayFromRadiance(img.pixels[i], 1.0f);
+        viewport_.pixels[i * 4 + 0] = toByte(d.x);
+        viewport_.pixels[i * 4 + 1] = toByte(d.y);
+        viewport_.pixels[i * 4 + 2] = toByte(d.z);
+        viewport_.pixels[i * 4 + 3] = 255;
+    }
+    last_ = std::move(out.value());
+    return {};
+}
+
+void Editor::notify(const std::string& text, double now) {
+    notifications_.push_back({text, now + 6.0});
+    while (notifications_.size() > 5) notifications_.pop_front();
+}
+
+}  // namespace brume::editor

@@ -1,0 +1,82 @@
+// The editor's state beside the document: selection, viewport quality, the camera verbs, the last
+// render's statistics and the notifications. Editor::run() is the single entry point for every
+// action, from the mouse, the keyboard or a --script file; document verbs go on to Document.
+#pragma once
+
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "autosave.h"
+#include "document.h"
+#include "gpu/gpu_renderer.h"
+#include "presenter.h"
+
+namespace brume::editor {
+
+enum class Kind { None, Volume, Light, Geometry };
+
+struct Selection {
+    Kind kind = Kind::None;
+    size_t index = 0;
+};
+
+struct Notification {
+    std::string text;
+    double untilSeconds = 0.0;
+};
+
+class Editor {
+public:
+    Editor(Document doc, Autosave autosave, Quality quality);
+
+    // Every action goes through here. Editor verbs (the rest are Document's):
+    //   select volume|light|geometry INDEX | select none
+    //   orbit YAW_DEG PITCH_DEG, pan RIGHT UP (fractions of the target distance), zoom FACTOR
+    //   quality low|medium|high|ultra (the viewport's preset; not saved in the scene)
+    //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
+    Result<void> run(const Action& action);
+    Result<void> run(const std::string& line);
+
+    Document& doc() { return doc_; }
+    const Document& doc() const { return doc_; }
+    Autosave& autosave() { return autosave_; }
+    Selection& selection() { return selection_; }
+    Quality quality() const { return quality_; }
+
+    // Renders when the document, quality or size changed since the last render (or `force`).
+    Result<void> renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force);
+    const Rgba8& viewport() const { return viewport_; }
+    const std::optional<gpu::GpuRender>& lastRender() const { return last_; }
+
+    void notify(const std::string& text, double now);
+    std::deque<Notification>& notifications() { return notifications_; }
+
+    // Called with every action that succeeded (--record writes them as a replayable script).
+    std::function<void(const Action&)> recorder;
+
+    // Pending editor-side requests a script or the UI made (consumed by main.cpp).
+    bool quitRequested = false;
+    double waitSeconds = 0.0;
+    std::string screenshotRequest;
+    double frameMs = 0.0;
+
+private:
+    Result<void> dispatch(const Action& a);
+    Result<void> camera(const Action& a);
+    Result<void> setCamera(const Camera& c);
+
+    Document doc_;
+    Autosave autosave_;
+    Selection selection_;
+    Quality quality_;
+    Rgba8 viewport_;
+    std::optional<gpu::GpuRender> last_;
+    uint64_t renderedRevision_ = ~uint64_t(0);
+    Quality renderedQuality_ = Quality::Low;
+    std::deque<Notification> notifications_;
+};
+
+}  // namespace brume::editor

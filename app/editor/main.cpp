@@ -1,0 +1,256 @@
+// brume-editor [SCENE.json]: the interactive fog editor (GLFW window, Vulkan swapchain, Dear ImGui).
+// Testing hooks: --script replays actions (one per frame, the same Editor::run the UI uses),
+// --screenshot/--frames renders N frames, saves the window image and exits.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <imgui.h>
+#include <stb/stb_image_write.h>
+
+#include "core/settings.h"
+#include "editor.h"
+#include "io/atomic_file.h"
+#include "io/scene_json.h"
+#include "ui.h"
+
+namespace fs = std::filesystem;
+using namespace brume;
+using namespace brume::editor;
+
+namespace {
+
+struct Options {
+    std::string scene;
+    std::string script;
+    std::string record;
+    std::string screenshot;
+    int frames = 0;
+    int width = 1280;
+    int height = 720;
+    std::string quality;
+    bool hideUi = false;
+    bool recover = false;
+    bool discardRecovery = false;
+    double autosaveSeconds = settings::editor_autosave_seconds.value();
+    bool validation = false;
+};
+
+double seconds() {
+    using namespace std::chrono;
+    return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+Result<void> writeScreenshot(const Rgba8& img, const std::string& path) {
+    return writeFileAtomic(path, [&](const std::string& tmp) -> Result<void> {
+        if (!stbi_write_png(tmp.c_str(), img.width, img.height, 4, img.pixels.data(), img.width * 4))
+            return Error{"Could not write the screenshot " + path + "."};
+        return {};
+    });
+}
+
+struct Script {
+    std::vector<std::string> lines;
+    size_t next = 0;
+    double resumeAt = 0.0;
+};
+
+Result<Script> readScript(const std::string& path) {
+    Script s;
+    if (path.empty()) return s;
+    std::ifstream f(path);
+    if (!f) return Error{path + ": cannot open the script file."};
+    for (std::string line; std::getline(f, line);) s.lines.push_back(line);
+    return s;
+}
+
+int fail(const std::string& message, int code) {
+    std::fprintf(stderr, "error: %s\n", message.c_str());
+    return code;
+}
+
+struct Window {
+    GLFWwindow* handle = nullptr;
+    ~Window() {
+        if (handle) glfwDestroyWindow(handle);
+        glfwTerminate();
+    }
+};
+
+}  // namespace
+
+int runEditor(const Options& o);
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{"brume-editor: place, shape and light volumetric fog live."};
+    app.add_option("scene", o.scene, "Scene file to open (JSON); none: a new, untitled scene.");
+    app.add_option("--script", o.script, "Run these actions, one per line and one per frame (see docs/editor.md).");
+    app.add_option("--record", o.record, "Append every action to this file (a replayable --script).");
+    app.add_option("--screenshot", o.screenshot, "After --frames frames, save the window image (PNG) and exit.");
+    app.add_option("--frames", o.frames, "Render this many frames (each re-rendering the scene), then exit.")->check(CLI::Range(1, 100000));
+    app.add_option("--width", o.width, "Window width [px].")->check(CLI::Range(64, 16384));
+    app.add_option("--height", o.height, "Window height [px].")->check(CLI::Range(36, 16384));
+    app.add_option("--quality", o.quality, "Viewport quality preset (default: the scene's render.quality).");
+    app.add_flag("--hide-ui", o.hideUi, "Show only the viewport (screenshots comparable with brume render).");
+    app.add_flag("--recover", o.recover, "Recover an autosave left by a crash without asking.");
+    app.add_flag("--discard-recovery", o.discardRecovery, "Delete an autosave left by a crash without asking.");
+    const Setting& autosave = settings::editor_autosave_seconds;
+    app.add_option("--autosave-seconds", o.autosaveSeconds, std::string(autosave.help) + " [s]")
+        ->check(CLI::Range(autosave.min, autosave.max));
+    app.add_flag("--validation", o.validation, "Enable the Vulkan validation layer; exit 1 if it reports anything.");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
+    }
+    return runEditor(o);
+}
+
+namespace {
+
+// The document to edit: the scene file (errors exit 2 like `brume`), or an empty scene.
+Result<Document> openDocument(const Options& o) {
+    if (o.scene.empty()) return Document(Scene{}, "");
+    Result<Scene> s = loadSceneFile(o.scene);
+    if (!s) return s.error();
+    return Document(s.value(), fs::absolute(o.scene).string());
+}
+
+// Runs script lines until one asks to wait or the script ends; one document action per frame, so
+// each edit is rendered like a user's. Returns an error naming the script line.
+Result<void> stepScript(Script& script, Editor& editor, double now) {
+    while (script.next < script.lines.size() && now >= script.resumeAt) {
+        const size_t n = script.next++;
+        const std::string& line = script.lines[n];
+        editor.waitSeconds = 0.0;
+        Result<void> r = editor.run(line);
+        if (!r) return Error{"script line " + std::to_string(n + 1) + ": " + r.error().message};
+        if (editor.waitSeconds > 0.0) script.resumeAt = now + editor.waitSeconds;
+        Result<Action> a = parseAction(line);
+        if (a && !a.value().verb.empty()) break;  // one action per frame
+    }
+    return {};
+}
+
+void offerRecovery(Editor& editor, UiState& ui, const Options& o, double now) {
+    const std::string path = editor.autosave().path();
+    if (!fs::exists(path)) return;
+    if (o.discardRecovery) return editor.autosave().discard();
+    if (!o.recover) return void(ui.recoveryPath = path);
+    Result<Scene> s = loadSceneFile(path);
+    if (s) editor.doc().replaceScene(s.value());
+    else editor.notify("The autosave could not be recovered: " + s.error().message, now);
+}
+
+
+// One iteration per frame: input, script, UI, autosave, render (when something changed, or every
+// frame with --frames so frame times measure the renderer), present.
+int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuRenderer& renderer, Script& script) {
+    UiState ui;
+    offerRecovery(editor, ui, o, seconds());
+    double frameStart = seconds(), totalMs = 0.0;
+    int frame = 0;
+    while (true) {
+        glfwPollEvents();
+        const double now = seconds();
+        if (glfwWindowShouldClose(presenter.window())) {
+            glfwSetWindowShouldClose(presenter.window(), GLFW_FALSE);
+            ui.closeRequested = true;
+        }
+        if (Result<void> r = stepScript(script, editor, now); !r) return fail(r.error().message, 2);
+        presenter.newFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        if (!o.hideUi) {
+            drawUi(editor, ui, now);
+            handleViewportInput(editor, ui, now);
+        } else if (ui.closeRequested) {
+            ui.closeConfirmed = true;
+        }
+        ImGui::Render();
+        if (Result<void> r = editor.autosave().tick(editor.doc(), now); !r) editor.notify(r.error().message, now);
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(presenter.window(), &w, &h);
+        if (w > 0 && h > 0) {
+            if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) editor.notify(r.error().message, now);
+        }
+        ++frame;
+        const bool last = o.frames > 0 && frame >= o.frames;
+        const bool capture = (last && !o.screenshot.empty()) || !editor.screenshotRequest.empty();
+        Rgba8 shot;
+        if (Result<void> r = presenter.present(editor.viewport(), ImGui::GetDrawData(), capture ? &shot : nullptr); !r)
+            return fail(r.error().message, 1);
+        if (capture) {
+            const std::string path = editor.screenshotRequest.empty() ? o.screenshot : editor.screenshotRequest;
+            editor.screenshotRequest.clear();
+            if (Result<void> r = writeScreenshot(shot, path); !r) return fail(r.error().message, 1);
+        }
+        const double end = seconds();
+        editor.frameMs = (end - frameStart) * 1000.0;
+        frameStart = end;
+        if (frame > 1) totalMs += editor.frameMs;  // the first frame also compiles the shaders
+        if (last) {
+            if (frame > 1) std::printf("frames: %d, mean frame time (after the first): %.1f ms\n", frame, totalMs / (frame - 1));
+            break;
+        }
+        if (editor.quitRequested || ui.closeConfirmed) break;
+    }
+    editor.autosave().discard();  // an orderly exit: saved, or the user chose to discard
+    return 0;
+}
+
+}  // namespace
+
+int runEditor(const Options& o) {
+    Result<Document> doc = openDocument(o);
+    if (!doc) return fail(doc.error().message, 2);
+    Quality quality = doc.value().scene().render.quality;
+    if (!o.quality.empty() && !parseQuality(o.quality, quality))
+        return fail("--quality: \"" + o.quality + "\" is not one of low, medium, high, ultra.", 2);
+    Result<Script> script = readScript(o.script);
+    if (!script) return fail(script.error().message, 2);
+    const std::string recoveryPath = recoveryPathFor(doc.value().path());
+    Editor editor(std::move(doc.value()), Autosave(recoveryPath, o.autosaveSeconds), quality);
+    std::ofstream record;
+    if (!o.record.empty()) {
+        record.open(o.record, std::ios::app);
+        if (!record) return fail(o.record + ": cannot open the record file.", 2);
+        editor.recorder = [&record](const Action& a) { record << formatAction(a) << "\n" << std::flush; };
+    }
+
+    if (!glfwInit()) return fail("brume-editor needs a display: set DISPLAY or run it under xvfb-run.", 1);
+    Window window;
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    const std::string title = "brume-editor - " + (o.scene.empty() ? std::string("untitled") : o.scene);
+    window.handle = glfwCreateWindow(o.width, o.height, title.c_str(), nullptr, nullptr);
+    if (!window.handle) return fail("brume-editor could not open a window on this display.", 1);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // panel layout is not persisted (tests stay reproducible)
+    ImGui_ImplGlfw_InitForVulkan(window.handle, true);
+    int code = 0;
+    {
+        Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, o.validation);
+        if (!presenter) return fail(presenter.error().message, 1);
+        Result<std::unique_ptr<gpu::GpuRenderer>> renderer = gpu::GpuRenderer::create({"", o.validation});
+        if (!renderer) return fail(renderer.error().message, 1);
+        code = editorLoop(o, editor, *presenter.value(), *renderer.value(), script.value());
+        if (o.validation) {
+            std::vector<std::string> messages = presenter.value()->validationMessages();
+            for (const std::string& m : renderer.value()->validationMessages()) messages.push_back(m);
+            for (const std::string& m : messages) std::fprintf(stderr, "validation: %s\n", m.c_str());
+            if (!messages.empty() && code == 0) code = 1;
+        }
+    }
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    return code;
+}

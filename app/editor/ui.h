@@ -1,0 +1,23 @@
+// The editor's Dear ImGui panels: menu bar, outliner, inspector (widgets built from the settings
+// metadata in core/settings.h: unit, range, tooltip), stats, help, notifications, and the
+// recovery and unsaved-changes prompts. Every edit they make is an Action run through Editor::run.
+#pragma once
+
+#include "editor.h"
+
+namespace brume::editor {
+
+struct UiState {
+    bool showStats = true;
+    bool showHelp = false;
+    bool closeRequested = false;   // the window's close button with unsaved changes: ask first
+    bool closeConfirmed = false;   // the user chose Save or Discard
+    std::string recoveryPath;      // non-empty: offer to recover this autosave
+    char saveAsPath[512] = {};
+};
+
+void drawUi(Editor& editor, UiState& ui, double now);
+// Viewport mouse and keyboard (orbit, pan, zoom, shortcuts) when ImGui does not want the input.
+void handleViewportInput(Editor& editor, UiState& ui, double now);
+
+}  // namespace brume::editor
