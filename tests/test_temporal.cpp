@@ -316,6 +316,28 @@ TEST(TemporalHistory, LightSwitchedOffLeavesNoStaleLight) {
         }
         const double stale = staleShare(img, truth, lastOn);
         std::printf("[ghost] frame %d after the switch: stale light %.4f%%\n", k, 100.0 * stale);
+        EXPECT_LT(stale, 1e-6);  // exactly the never-on sequence (the clamp alone leaves ~1%, below)
+    }
+}
+
+// Second line of defence, for an edit the key would miss: with the history kept (the key forced
+// equal), the neighbourhood clamp alone removes the switched-off light within a frame. Compared with
+// a sequence that never had the light, at the same jitter indices.
+TEST(TemporalHistory, ClampingAloneRemovesStaleLightWhenTheHistoryIsKept) {
+    const Scene on = conesScene();
+    Scene off = on;
+    off.lights[0].intensity = 0.0f;
+    const RenderRequest req = request(Quality::Medium);
+    CpuHistory h = historyAfter(on, req, 8);
+    const Image lastOn = renderFroxelFrameCpu(on, req, h).image;  // frame index 8
+    CpuHistory neverOn = historyAfter(off, req, 9);
+    const uint64_t offKey = neverOn.state.sceneKey;
+    for (int k = 1; k <= 3; ++k) {
+        h.state.sceneKey = offKey;  // as if the edit had not been noticed
+        const Image img = renderFroxelFrameCpu(off, req, h).image;
+        const Image truth = renderFroxelFrameCpu(off, req, neverOn).image;
+        const double stale = staleShare(img, truth, lastOn);
+        std::printf("[ghost] history kept, frame %d after the switch: stale light %.2f%%\n", k, 100.0 * stale);
         EXPECT_LT(stale, 0.05);
     }
 }
