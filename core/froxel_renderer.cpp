@@ -1,4 +1,4 @@
-// The CPU froxel renderer (Hillaire 2015): the GPU passes' oracle. Four passes, each a loop over
+// The CPU froxel renderer (Hillaire 2015): the GPU passes' oracle. Five passes, each a loop over
 // independent items writing only its own outputs, so any thread count gives the same bits:
 //   voxelize   froxel (x, y, s) -> mediaScatteringG, mediaExtinction, mediaEmission
 //   light      froxel           -> source (sigma_t = 0 froxels skip lighting: S = emission)

@@ -2,6 +2,7 @@
 //
 //   frame (uniform) ---------------------------------------------------------> every pass
 //   volumes, lights (storage) -> voxelize -> media* -> light -> source -> integrate -> integrated*
+//   previousFrame, history[read] -> temporal (after light) -> history[write] -> source, mediaExtinction
 //   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> output
 //
 // Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes and 4 history volumes (temporal

@@ -1,5 +1,5 @@
 // The GPU froxel renderer (Vulkan compute + a raster pass for the preview geometry): the same
-// four passes as core/froxel_renderer.cpp (renderFroxelCpu, its oracle), evaluated with the same
+// five passes as core/froxel_renderer.cpp (renderFroxelCpu, its oracle), evaluated with the same
 // shaders/shared/ functions on the same compiled scene and frame constants.
 //
 //   auto r = GpuRenderer::create({});            // once: device, pipelines
