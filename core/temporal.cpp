@@ -3,6 +3,7 @@
 // comment holds the reprojection rule.
 #include "temporal.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
