@@ -54,7 +54,9 @@ CommandResult runBench(const BenchOptions& o) {
     }
     const RendererKind kind = o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu;
 
-    // One session for every frame: what an editor pays per frame, not per start-up.
+    // One session for every frame: what an editor pays per frame, not per start-up; the frames form
+    // one temporal sequence, so the temporal pass reads its history as it does in an editor.
+    request.history = HistoryMode::Continue;
     RenderSession session(kind, o.device);
     if (session.startFailure()) return badInput(session.startFailure()->message);
     std::map<std::string, std::vector<double>> passMs;

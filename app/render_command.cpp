@@ -80,7 +80,7 @@ std::variant<RenderOutput, RenderFailure> RenderSession::render(const Scene& sce
             break;
         }
         case RendererKind::FroxelCpu: {
-            FroxelResult r = renderFroxelCpu(scene, request);
+            FroxelResult r = cpu_.render(scene, request);
             out.image = std::move(r.image);
             out.stats.froxelDims = r.volumes.dims;
             out.stats.litFroxels = r.volumes.litFroxels;
@@ -132,6 +132,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                                                  " if absent); the reference renderer ignores it"));
     o.frames = settings::cli_frames.i();
     cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames));
+    o.orbit = settings::cli_orbit.f();
+    cmd->add_option("--orbit", o.orbit, optionHelp(settings::cli_orbit));
     auto* ref = cmd->add_flag("--reference", o.reference,
                               "Use the per-pixel reference ray marcher (ground truth; slow). Default: off.");
     auto* cpu = cmd->add_flag("--cpu", o.cpu,
@@ -181,6 +183,7 @@ static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
         return badInput("--quality '" + o.quality + "' is not one of " + std::string(settings::render_quality.choices) + ".");
     }
     if (auto e = checkRange("--frames", o.frames, settings::cli_frames)) return e;
+    if (auto e = checkRange("--orbit", o.orbit, settings::cli_orbit)) return e;
     if (auto e = checkRange("--exposure", o.exposure, settings::cli_exposure)) return e;
     if (auto e = checkRange("--threads", o.threads, settings::cli_threads)) return e;
     if (!o.statsPath.empty()) {
@@ -201,6 +204,27 @@ static RenderRequest requestFromOptions(const Scene& scene, const RenderOptions&
     return r;
 }
 
+// request.frames frames; with an orbit, one render call per frame (each with its camera, the history
+// carried over by the session's renderer), progress shown for the last only so it never goes back.
+static std::variant<RenderOutput, RenderFailure> renderFrames(RenderSession& session, const Scene& scene,
+                                                              const RenderRequest& request, float orbitDegPerFrame) {
+    if (orbitDegPerFrame == 0.0f) return session.render(scene, request);
+    Scene s = scene;
+    RenderRequest frame = request;
+    frame.frames = 1;
+    frame.progress = nullptr;
+    for (int n = 0;; ++n) {
+        s.camera = orbitCamera(scene.camera, orbitDegPerFrame * static_cast<float>(n));
+        frame.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
+        if (n == request.frames - 1) {
+            frame.progress = request.progress;
+            return session.render(s, frame);
+        }
+        std::variant<RenderOutput, RenderFailure> r = session.render(s, frame);
+        if (std::holds_alternative<RenderFailure>(r)) return r;
+    }
+}
+
 CommandResult runRender(const RenderOptions& o) {
     if (auto e = checkOptions(o)) return *e;
     Result<Scene> scene = loadSceneFile(o.scenePath);
@@ -212,7 +236,7 @@ CommandResult runRender(const RenderOptions& o) {
     ProgressLine progress(std::string("rendering (") + rendererName(kind) + ")");
     request.progress = [&progress](float f) { progress.update(f); };
     RenderSession session(kind, o.device);
-    std::variant<RenderOutput, RenderFailure> result = session.render(scene.value(), request);
+    std::variant<RenderOutput, RenderFailure> result = renderFrames(session, scene.value(), request, o.orbit);
     if (const RenderFailure* f = std::get_if<RenderFailure>(&result)) {
         progress.end();
         return f->cannotRun ? badInput(f->message) : internalFailure(f->message);

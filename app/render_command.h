@@ -64,6 +64,7 @@ private:
     std::optional<RenderFailure> startFailure_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
+    FroxelCpuRenderer cpu_;  // keeps the temporal history across render calls, as the GPU renderer does
 };
 
 // Writes --stats JSON atomically.
@@ -77,6 +78,7 @@ struct RenderOptions {
     int height = 0;
     std::string quality;
     int frames = 0;
+    float orbit = 0.0f;  // --orbit DEGREES_PER_FRAME
     float exposure = 0.0f;
     int threads = 0;
     bool reference = false;

@@ -1,7 +1,8 @@
-// The CPU froxel renderer (Hillaire 2015): the GPU passes' oracle. Four passes, each a loop over
+// The CPU froxel renderer (Hillaire 2015): the GPU passes' oracle. Five passes, each a loop over
 // independent items writing only its own outputs, so any thread count gives the same bits:
 //   voxelize   froxel (x, y, s) -> mediaScatteringG, mediaExtinction, mediaEmission
 //   light      froxel           -> source (sigma_t = 0 froxels skip lighting: S = emission)
+//   temporal   froxel           -> source, mediaExtinction blended with the history (core/temporal.cpp)
 //   integrate  column (x, y)    -> integratedScattering, integratedTransmittance (front to back)
 //   composite  pixel            -> image (surface or sky behind the fog read from the integrated volume)
 // Every formula comes from shaders/shared/, which the GPU passes include too.
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "froxel_frame.h"
 #include "geometry.h"
 #include "parallel.h"
 #include "progress.h"
@@ -155,13 +157,15 @@ FroxelVolumes allocateVolumes(const shd::FrameUniforms& frame) {
 
 }  // namespace
 
-FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
+FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& request, CpuHistory& history) {
     FroxelResult result;
     if (request.width < 1 || request.height < 1) return result;
     const CompiledScene cs = compileScene(scene);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
+    const uint64_t sceneKey = temporalSceneKey(cs, scene, froxelGridDims(request.width, request.height, fs));
+    const TemporalFrame t = beginTemporalFrame(history.state, scene, sceneKey, request.history);
     FroxelVolumes& v = result.volumes;
-    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
+    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
     frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
@@ -183,6 +187,9 @@ FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
     progress.finishedPass(rows);
     for (size_t lit : litPerRow) v.litFroxels += lit;
     v.skippedFroxels = v.source.size() - v.litFroxels;
+
+    temporalPassCpu(v, history, t, threads);
+    endTemporalFrame(history.state, t, v.frame, sceneKey);
 
     parallelFor(columns, threads, [&](int c) { integrateColumn(v, c % v.dims.x, c / v.dims.x); }, report);
     progress.finishedPass(columns);

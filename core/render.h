@@ -11,6 +11,7 @@
 #include "image.h"
 #include "quality.h"
 #include "scene.h"
+#include "temporal.h"
 
 namespace brume {
 
@@ -21,7 +22,8 @@ struct RenderRequest {
     int width = 640;
     int height = 360;
     Quality quality = Quality::High;
-    int frames = 1;        // froxel renderer: frames of temporal accumulation (the temporal issue)
+    int frames = 1;        // froxel renderers: frames rendered (static camera); the last is returned
+    HistoryMode history = HistoryMode::Restart;  // froxel renderers: keep the previous call's history?
     int threads = 0;       // 0 = every core
     ProgressFn progress;   // optional
 };
@@ -51,6 +53,18 @@ struct FroxelResult {
     FroxelVolumes volumes;
 };
 
+// request.frames frames from a fresh history (request.history is moot); progress covers the last.
 FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request);
+
+// The CPU froxel renderer with a history kept across render calls (the GPU renderer's temporal
+// oracle): with request.history = Continue, each call continues the sequence of the previous one.
+class FroxelCpuRenderer {
+public:
+    FroxelResult render(const Scene& scene, const RenderRequest& request);
+    const CpuHistory& history() const { return history_; }
+
+private:
+    CpuHistory history_;
+};
 
 }  // namespace brume

@@ -120,7 +120,8 @@ inline constexpr std::array kAll = {
 // Options of `brume render` that are not scene keys (so not in kAll, which is the scene format).
 // clang-format off
 inline constexpr Setting cli_exposure     {"--exposure", K::Number, "", 1e-6, 1e6, {1}, "", "Multiplies radiance before the PNG tone curve; EXR is written linear and unscaled."};
-inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames of temporal accumulation (froxel renderer; the reference ignores it)."};
+inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames rendered with temporal accumulation; the last is written (froxel renderers; the reference ignores it)."};
+inline constexpr Setting cli_orbit        {"--orbit", K::Number, "deg", -180, 180, {0}, "", "Camera path for --frames: frame n turns the camera by n times this about its target (axis: camera.up); 0 = static."};
 // brume-editor options.
 inline constexpr Setting editor_autosave_seconds {"--autosave-seconds", K::Number, "s", 0.1, 3600, {5}, "", "Longest time unsaved changes wait before the editor writes them to its recovery file."};
 inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};

@@ -2,17 +2,27 @@
 //
 //   frame (uniform) ---------------------------------------------------------> every pass
 //   volumes, lights (storage) -> voxelize -> media* -> light -> source -> integrate -> integrated*
+//   previousFrame, history[read] -> temporal (after light) -> history[write] -> source, mediaExtinction
 //   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> output
 //
-// Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes; at 1280x720 High
-// (160x90x96 froxels) that is 6 x 22 MiB = 133 MiB, at Ultra (320x180x128) 6 x 113 MiB = 675 MiB.
+// Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes and 4 history volumes (temporal
+// ping-pong pair of S and sigma_t); at 1280x720 High (160x90x96 froxels) that is 10 x 22 MiB =
+// 221 MiB, at Ultra (320x180x128) 10 x 113 MiB = 1.1 GiB.
 #pragma once
 
 #include <glm/glm.hpp>
 
+#include <array>
+
 #include "resources.h"
 
 namespace brume::gpu {
+
+// One side of the temporal history's ping-pong pair: the resolved S and sigma_t of one frame.
+struct HistoryImages {
+    GpuImage source;      // rgba32f: resolved rgb S
+    GpuImage extinction;  // rgba32f: resolved rgb sigma_t
+};
 
 struct FrameResources {
     Buffer frame;     // FrameUniforms
@@ -20,9 +30,14 @@ struct FrameResources {
     Buffer lights;    // LightData[], at least one entry
     Buffer counters;  // FroxelCounters, read back by the host
     Buffer vertices;  // GeometryVertex[]
+    Buffer previousFrame;  // FrameUniforms of the previous frame (temporal pass)
 
     glm::ivec3 froxelDims{0};
     GpuImage mediaScatteringG, mediaExtinction, mediaEmission, source, integratedScattering, integratedTransmittance;
+    // Kept across frames (unlike the volumes above); recreated with them, then undefined until a
+    // first transition (historyUndefined) and unread until a frame has written them.
+    std::array<HistoryImages, 2> history;
+    bool historyUndefined = true;
 
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage

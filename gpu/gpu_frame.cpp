@@ -72,6 +72,19 @@ Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool& dirty
         if (!img) return img.error();
         *images[i] = std::move(img.value());
     }
+    static constexpr std::array<std::array<const char*, 2>, 2> historyNames{
+        {{"history source 0", "history extinction 0"}, {"history source 1", "history extinction 1"}}};
+    for (size_t i = 0; i < res.history.size(); ++i) {
+        for (int k = 0; k < 2; ++k) {
+            GpuImage& slot = k == 0 ? res.history[i].source : res.history[i].extinction;
+            slot = GpuImage{};
+            Result<GpuImage> img =
+                createImage(*device, extentOf(dims), true, kVolumeFormat, kVolumeUsage, historyNames[i][static_cast<size_t>(k)]);
+            if (!img) return img.error();
+            slot = std::move(img.value());
+        }
+    }
+    res.historyUndefined = true;
     res.froxelDims = dims;
     dirty = true;
     return {};
@@ -128,6 +141,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            Memory::Upload, "volumes", dirty));
     BRUME_TRY(ensureBuffer(res.lights, std::max<size_t>(cs.lights.size(), 1) * sizeof(shd::LightData), storage,
                            Memory::Upload, "lights", dirty));
+    BRUME_TRY(ensureBuffer(res.previousFrame, sizeof(shd::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                           Memory::Upload, "previous frame uniforms", dirty));
     bool vertexDirty = false;
     BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                            Memory::Upload, "geometry vertices", vertexDirty));
@@ -137,7 +152,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     return {};
 }
 
-void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes) {
+void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
+                                     int historyWriteIndex) {
     timer.reset(cmd);
     vkCmdFillBuffer(cmd, res.counters.buffer.get(), 0, VK_WHOLE_SIZE, 0);
     std::vector<VkImage> storageImages{res.output.image.get()};
@@ -147,6 +163,18 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     transition(cmd, storageImages, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    // Last frame's temporal pass wrote the history this frame reads (and overwrites the other half).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    // The history outlives frames: only freshly created images start from UNDEFINED (a frame
+    // without history does not read them, see temporal.comp).
+    if (res.historyUndefined) {
+        std::vector<VkImage> history;
+        for (const HistoryImages& h : res.history) history.insert(history.end(), {h.source.image.get(), h.extinction.image.get()});
+        transition(cmd, history, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        res.historyUndefined = false;
+    }
     // The light pass counts into the cleared counters with atomics.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -161,6 +189,10 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     timer.begin(cmd, "light");
     computeToComputeBarrier(cmd);
     recordLight(cmd, light, bindings, res.froxelDims);
+    timer.end(cmd);
+    timer.begin(cmd, "temporal");
+    computeToComputeBarrier(cmd);
+    recordTemporal(cmd, temporal, bindings, res, historyWriteIndex);
     timer.end(cmd);
     timer.begin(cmd, "integrate");
     computeToComputeBarrier(cmd);

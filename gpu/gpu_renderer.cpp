@@ -51,7 +51,8 @@ Result<void> GpuRenderer::State::createPasses() {
     if (!g) return g.error();
     geometry = std::move(g.value());
     for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&light, &createLightPass},
-                                std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
+                                std::pair{&temporal, &createTemporalPass}, std::pair{&integrate, &createIntegratePass},
+                                std::pair{&composite, &createCompositePass}}) {
         Result<ComputePass> p = create(*device, layout);
         if (!p) return p.error();
         *pass = std::move(p.value());
@@ -114,7 +115,6 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const CompiledScene cs = compileScene(scene);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
-    frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;  // as renderFroxelCpu
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
@@ -123,22 +123,41 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex)));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
-    std::memcpy(r.frame.mapped, &frame, sizeof(frame));
     if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
     if (!cs.lights.empty()) std::memcpy(r.lights.mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
 
-    BRUME_VK(vkResetCommandBuffer(s_->cmd, 0), "reset the command buffer");
-    VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    BRUME_VK(vkBeginCommandBuffer(s_->cmd, &begin), "begin recording the frame");
-    s_->recordFrame(static_cast<uint32_t>(vertices.size()), cs.ambient, frame.projection.w, readBackVolumes);
-    BRUME_VK(vkEndCommandBuffer(s_->cmd), "record the frame");
-    Result<double> wall = s_->submitAndWait();
-    if (!wall) return wall.error();
+    // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
+    // decides, as for the CPU renderer); only the last is read back.
+    const uint64_t sceneKey = temporalSceneKey(cs, scene, dims);
+    HistoryMode mode = request.history;
+    const int frames = std::max(request.frames, 1);
+    double wallMs = 0.0;
+    for (int n = 0; n < frames; ++n) {
+        const TemporalFrame t = beginTemporalFrame(s_->temporalState, scene, sceneKey, mode);
+        mode = HistoryMode::Continue;
+        frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
+        frame.jitter.w = t.useHistory ? t.historyWeight : 0.0f;
+        frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;  // as renderFroxelCpu
+        std::memcpy(r.frame.mapped, &frame, sizeof(frame));
+        std::memcpy(r.previousFrame.mapped, &s_->temporalState.frame, sizeof(frame));
+        writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);
+        const bool last = n == frames - 1;
+        BRUME_VK(vkResetCommandBuffer(s_->cmd, 0), "reset the command buffer");
+        VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        BRUME_VK(vkBeginCommandBuffer(s_->cmd, &begin), "begin recording the frame");
+        s_->recordFrame(static_cast<uint32_t>(vertices.size()), cs.ambient, frame.projection.w, last && readBackVolumes,
+                        t.writeIndex);
+        BRUME_VK(vkEndCommandBuffer(s_->cmd), "record the frame");
+        Result<double> wall = s_->submitAndWait();
+        if (!wall) return wall.error();
+        wallMs = wall.value();
+        endTemporalFrame(s_->temporalState, t, frame, sceneKey);
+    }
 
     GpuRender out;
-    out.wallMs = wall.value();
+    out.wallMs = wallMs;
     out.dims = dims;
     out.image = Image(size.x, size.y);
     const auto* pixels = static_cast<const glm::vec4*>(r.outputReadback.mapped);

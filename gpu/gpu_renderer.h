@@ -1,5 +1,5 @@
 // The GPU froxel renderer (Vulkan compute + a raster pass for the preview geometry): the same
-// four passes as core/froxel_renderer.cpp (renderFroxelCpu, its oracle), evaluated with the same
+// five passes as core/froxel_renderer.cpp (renderFroxelCpu, its oracle), evaluated with the same
 // shaders/shared/ functions on the same compiled scene and frame constants.
 //
 //   auto r = GpuRenderer::create({});            // once: device, pipelines
@@ -19,7 +19,7 @@ namespace brume::gpu {
 struct GpuRender {
     Image image;
     FroxelVolumes volumes;           // filled only when render() is asked to read them back
-    std::vector<PassTiming> passes;  // geometry, voxelize, light, integrate, composite, readback
+    std::vector<PassTiming> passes;  // geometry, voxelize, light, temporal, integrate, composite, readback
     double wallMs = 0.0;             // wall clock from submit to completion (covers every pass)
     glm::ivec3 dims{0};              // froxel grid
     size_t litFroxels = 0;           // froxels with sigma_t > 0
@@ -33,7 +33,9 @@ public:
     GpuRenderer(const GpuRenderer&) = delete;
     GpuRenderer& operator=(const GpuRenderer&) = delete;
 
-    // request.frames and request.threads are ignored (no temporal accumulation yet).
+    // Renders request.frames frames (temporal accumulation; the history is kept across calls, see
+    // RenderRequest::history) and returns the last; wallMs and passes are the last frame's.
+    // request.threads is ignored.
     Result<GpuRender> render(const Scene& scene, const RenderRequest& request, bool readBackVolumes = false);
 
     std::string deviceName() const;

@@ -35,6 +35,12 @@ void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const Descript
 Result<ComputePass> createLightPass(const Device& device, VkPipelineLayout layout);
 void recordLight(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
+// Temporal (between light and integrate). in: frame, previous frame, source, mediaExtinction,
+// history[1 - writeIndex]. out: history[writeIndex], copied over source and mediaExtinction.
+Result<ComputePass> createTemporalPass(const Device& device, VkPipelineLayout layout);
+void recordTemporal(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, const FrameResources& r,
+                    int writeIndex);
+
 // Integrate. in: frame, source, mediaExtinction. out: integratedScattering, integratedTransmittance.
 Result<ComputePass> createIntegratePass(const Device& device, VkPipelineLayout layout);
 void recordIntegrate(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);

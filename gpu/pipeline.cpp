@@ -11,7 +11,7 @@ namespace brume::gpu {
 namespace {
 
 VkDescriptorType bindingType(int binding) {
-    if (binding == shd::BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    if (binding == shd::BINDING_FRAME || binding == shd::BINDING_PREVIOUS_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     if (binding <= shd::BINDING_COUNTERS) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
@@ -47,9 +47,9 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "froxel pipeline layout");
 
     const std::array<VkDescriptorPoolSize, 3> sizes{{
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 4)},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 5)},
     }};
     VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = 1;
@@ -69,29 +69,58 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     return b;
 }
 
+namespace {
+
+// Points binding i at a buffer or an image view.
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, const VkDescriptorBufferInfo* buffer,
+                                     const VkDescriptorImageInfo* image) {
+    VkWriteDescriptorSet w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w.dstSet = set;
+    w.dstBinding = static_cast<uint32_t>(binding);
+    w.descriptorCount = 1;
+    w.descriptorType = bindingType(binding);
+    w.pBufferInfo = buffer;
+    w.pImageInfo = image;
+    return w;
+}
+
+}  // namespace
+
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
-    const std::array<const Buffer*, 4> buffers{&r.frame, &r.volumes, &r.lights, &r.counters};
-    const std::array<const GpuImage*, shd::BINDING_COUNT - 4> images{
+    // Bindings 0..3 and BINDING_PREVIOUS_FRAME are buffers, 4..BINDING_OUTPUT images; the history
+    // pair is bound per frame by writeHistoryBindings.
+    const std::array<const Buffer*, 5> buffers{&r.frame, &r.volumes, &r.lights, &r.counters, &r.previousFrame};
+    const std::array<int, 5> bufferBindings{shd::BINDING_FRAME, shd::BINDING_VOLUMES, shd::BINDING_LIGHTS,
+                                            shd::BINDING_COUNTERS, shd::BINDING_PREVIOUS_FRAME};
+    const std::array<const GpuImage*, shd::BINDING_OUTPUT - 3> images{
         &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
         &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};
-    std::array<VkDescriptorBufferInfo, 4> bufferInfos{};
+    std::array<VkDescriptorBufferInfo, buffers.size()> bufferInfos{};
     std::array<VkDescriptorImageInfo, images.size()> imageInfos{};
-    std::array<VkWriteDescriptorSet, shd::BINDING_COUNT> writes{};
-    for (int i = 0; i < shd::BINDING_COUNT; ++i) {
-        VkWriteDescriptorSet& w = writes[static_cast<size_t>(i)];
-        w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-        w.dstSet = set;
-        w.dstBinding = static_cast<uint32_t>(i);
-        w.descriptorCount = 1;
-        w.descriptorType = bindingType(i);
-        if (i < 4) {
-            bufferInfos[static_cast<size_t>(i)] = {buffers[static_cast<size_t>(i)]->buffer.get(), 0, VK_WHOLE_SIZE};
-            w.pBufferInfo = &bufferInfos[static_cast<size_t>(i)];
-        } else {
-            const size_t k = static_cast<size_t>(i - 4);
-            imageInfos[k] = {VK_NULL_HANDLE, images[k]->view.get(), VK_IMAGE_LAYOUT_GENERAL};
-            w.pImageInfo = &imageInfos[k];
-        }
+    std::array<VkWriteDescriptorSet, buffers.size() + images.size()> writes{};
+    for (size_t i = 0; i < buffers.size(); ++i) {
+        bufferInfos[i] = {buffers[i]->buffer.get(), 0, VK_WHOLE_SIZE};
+        writes[i] = descriptorWrite(set, bufferBindings[i], &bufferInfos[i], nullptr);
+    }
+    for (size_t k = 0; k < images.size(); ++k) {
+        imageInfos[k] = {VK_NULL_HANDLE, images[k]->view.get(), VK_IMAGE_LAYOUT_GENERAL};
+        writes[buffers.size() + k] = descriptorWrite(set, static_cast<int>(k) + 4, nullptr, &imageInfos[k]);
+    }
+    vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void writeHistoryBindings(const Device& device, VkDescriptorSet set, const FrameResources& r, int writeIndex) {
+    const HistoryImages& in = r.history[static_cast<size_t>(1 - writeIndex)];
+    const HistoryImages& out = r.history[static_cast<size_t>(writeIndex)];
+    const std::array<std::pair<int, const GpuImage*>, 4> images{{{shd::BINDING_HISTORY_SOURCE_IN, &in.source},
+                                                                 {shd::BINDING_HISTORY_EXTINCTION_IN, &in.extinction},
+                                                                 {shd::BINDING_HISTORY_SOURCE_OUT, &out.source},
+                                                                 {shd::BINDING_HISTORY_EXTINCTION_OUT, &out.extinction}}};
+    std::array<VkDescriptorImageInfo, 4> infos{};
+    std::array<VkWriteDescriptorSet, 4> writes{};
+    for (size_t i = 0; i < images.size(); ++i) {
+        infos[i] = {VK_NULL_HANDLE, images[i].second->view.get(), VK_IMAGE_LAYOUT_GENERAL};
+        writes[i] = descriptorWrite(set, images[i].first, nullptr, &infos[i]);
     }
     vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

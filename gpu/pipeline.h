@@ -21,6 +21,9 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device);
 
 // Points every binding at the current resources; call after any of them is recreated.
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r);
+// The temporal ping-pong pair: *_IN = r.history[1 - writeIndex], *_OUT = r.history[writeIndex].
+// Called before recording each frame (the set is not in use then: the previous frame has finished).
+void writeHistoryBindings(const Device& device, VkDescriptorSet set, const FrameResources& r, int writeIndex);
 
 // name: a shader file name from shaders/, e.g. "voxelize.comp".
 Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* name);

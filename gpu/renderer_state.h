@@ -5,6 +5,7 @@
 #include <array>
 
 #include "core/compile.h"
+#include "core/temporal.h"
 #include "frame_resources.h"
 #include "gpu_renderer.h"
 #include "passes.h"
@@ -14,7 +15,9 @@ namespace brume::gpu {
 
 inline constexpr VkFormat kVolumeFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr uint32_t kMaxPasses = 8;
-inline constexpr VkImageUsageFlags kVolumeUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+// TRANSFER_DST: the temporal pass copies its result over source and mediaExtinction.
+inline constexpr VkImageUsageFlags kVolumeUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 
 // Declaration order is destruction order reversed: the device outlives everything it owns.
 struct GpuRenderer::State {
@@ -25,6 +28,8 @@ struct GpuRenderer::State {
     DescriptorBindings bindings;
     GeometryPass geometry;
     ComputePass voxelize, light, integrate, composite;
+    ComputePass temporal;
+    TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
     FrameResources res;
     std::array<Buffer, 6> volumeReadback;
@@ -37,7 +42,8 @@ struct GpuRenderer::State {
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes);
-    void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes);
+    void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
+                     int historyWriteIndex);
     void recordReadback(bool readBackVolumes);
     Result<double> submitAndWait();
 };

@@ -7,6 +7,7 @@ layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameUnifo
 layout(std430, set = 0, binding = BINDING_VOLUMES) readonly buffer VolumeBlock { VolumeData volumes[]; };
 layout(std430, set = 0, binding = BINDING_LIGHTS) readonly buffer LightBlock { LightData lights[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBlock { FroxelCounters counters; };
+layout(std140, set = 0, binding = BINDING_PREVIOUS_FRAME) uniform PreviousFrameBlock { FrameUniforms previousFrame; };
 
 #ifdef BRUME_FROXEL_IMAGES
 layout(set = 0, binding = BINDING_MEDIA_SCATTERING, rgba32f) uniform image3D mediaScatteringG;
@@ -18,4 +19,8 @@ layout(set = 0, binding = BINDING_INTEGRATED_TRANSMITTANCE, rgba32f) uniform ima
 layout(set = 0, binding = BINDING_SCENE_COLOR, rgba32f) uniform image2D sceneColor;
 layout(set = 0, binding = BINDING_SCENE_DEPTH, r32f) uniform image2D sceneDepth;
 layout(set = 0, binding = BINDING_OUTPUT, rgba32f) uniform image2D outputImage;
+layout(set = 0, binding = BINDING_HISTORY_SOURCE_IN, rgba32f) uniform image3D historySourceIn;
+layout(set = 0, binding = BINDING_HISTORY_EXTINCTION_IN, rgba32f) uniform image3D historyExtinctionIn;
+layout(set = 0, binding = BINDING_HISTORY_SOURCE_OUT, rgba32f) uniform image3D historySourceOut;
+layout(set = 0, binding = BINDING_HISTORY_EXTINCTION_OUT, rgba32f) uniform image3D historyExtinctionOut;
 #endif

@@ -15,7 +15,9 @@
 
 #include "core/image.h"
 #include "core/settings.h"
+#include "core/render.h"
 #include "io/image_io.h"
+#include "io/scene_json.h"
 
 namespace fs = std::filesystem;
 
@@ -310,6 +312,56 @@ TEST_F(CliGpu, StatsJsonHasEveryPassAndTheFroxelCounts) {
     }
     const CliRun bad = brume("render " + quoted(kDefaultScene) + " -o fog.png --stats nowhere/stats.json" + kSmall);
     expectOneLineError(bad, "nowhere");
+}
+
+}  // namespace
+
+namespace {
+
+// The last frame of the CPU froxel renderer's sequence on the default scene at kSmall's size: a
+// static camera, or one turned by `orbit` degrees per frame about its target.
+brume::Image cpuSequence(int frames, float orbit) {
+    brume::Result<brume::Scene> scene = brume::loadSceneFile(kDefaultScene);
+    EXPECT_TRUE(scene.ok());
+    brume::RenderRequest r = brume::requestFromScene(scene.value());
+    r.width = 64;
+    r.height = 36;
+    r.quality = brume::Quality::Low;
+    brume::FroxelCpuRenderer renderer;
+    brume::Image last;
+    brume::Scene s = scene.value();
+    for (int n = 0; n < frames; ++n) {
+        s.camera = brume::orbitCamera(scene.value().camera, orbit * static_cast<float>(n));
+        r.history = n == 0 ? brume::HistoryMode::Restart : brume::HistoryMode::Continue;
+        last = renderer.render(s, r).image;
+    }
+    return last;
+}
+
+// --frames N writes the N-th frame of the temporal sequence, --orbit moves the camera along it:
+// the EXR equals the CPU froxel renderer's own sequence, and differs from a single frame.
+TEST_F(Cli, FramesAndOrbitWriteTheLastFrameOfTheSequence) {
+    for (const std::string orbit : {"", " --orbit 3"}) {
+        const CliRun r = brume("render " + quoted(kDefaultScene) + " -o seq.exr --cpu --frames 6" + orbit + kSmall);
+        ASSERT_EQ(r.exitCode, 0) << orbit << ": " << r.err;
+        brume::Result<brume::Image> img = brume::readExr((dir_ / "work" / "seq.exr").string());
+        ASSERT_TRUE(img.ok()) << img.error().message;
+        const brume::Image expected = cpuSequence(6, orbit.empty() ? 0.0f : 3.0f);
+        EXPECT_LT(brume::relativeMeanAbsError(img.value(), expected), 1e-6) << orbit;
+        EXPECT_GT(brume::relativeMeanAbsError(img.value(), cpuSequence(1, 0.0f)), 1e-3) << orbit;
+    }
+    const CliRun help = brume("render --help");
+    EXPECT_NE(help.out.find("--orbit"), std::string::npos) << help.out;
+    expectOneLineError(brume("render " + quoted(kDefaultScene) + " -o out.png --orbit 500"), "--orbit");
+}
+
+// The GPU renderer follows the same sequence (history kept across its render calls).
+TEST_F(CliGpu, FramesAndOrbitMatchTheCpuSequence) {
+    const CliRun r = brume("render " + quoted(kDefaultScene) + " -o seq.exr --frames 6 --orbit 3" + kSmall);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    brume::Result<brume::Image> img = brume::readExr((dir_ / "work" / "seq.exr").string());
+    ASSERT_TRUE(img.ok()) << img.error().message;
+    EXPECT_LT(brume::relativeMeanAbsError(img.value(), cpuSequence(6, 3.0f)), 0.01);
 }
 
 }  // namespace

@@ -20,7 +20,14 @@ BRUME_CONST int BINDING_INTEGRATED_TRANSMITTANCE = 9;  // image3D rgba32f
 BRUME_CONST int BINDING_SCENE_COLOR = 10;      // image2D rgba32f: shaded surfaces / sky
 BRUME_CONST int BINDING_SCENE_DEPTH = 11;      // image2D r32f: view depth [m] (camera far = sky)
 BRUME_CONST int BINDING_OUTPUT = 12;           // image2D rgba32f: the composited image
-BRUME_CONST int BINDING_COUNT = 13;
+// Temporal pass (gpu/pass_temporal.cpp): last frame's constants and the history ping-pong pair,
+// rebound every frame so that *_IN is what the previous frame wrote to *_OUT.
+BRUME_CONST int BINDING_PREVIOUS_FRAME = 13;   // uniform FrameUniforms of the previous frame
+BRUME_CONST int BINDING_HISTORY_SOURCE_IN = 14;       // image3D rgba32f: resolved S, previous frame
+BRUME_CONST int BINDING_HISTORY_EXTINCTION_IN = 15;   // image3D rgba32f: resolved sigma_t, previous frame
+BRUME_CONST int BINDING_HISTORY_SOURCE_OUT = 16;      // image3D rgba32f: resolved S, this frame
+BRUME_CONST int BINDING_HISTORY_EXTINCTION_OUT = 17;  // image3D rgba32f: resolved sigma_t, this frame
+BRUME_CONST int BINDING_COUNT = 18;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {

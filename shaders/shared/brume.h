@@ -7,6 +7,7 @@
 #include "media.h"
 #include "lighting.h"
 #include "integrate.h"
+#include "temporal.h"
 #include "distant.h"
 #include "shadows.h"
 #include "tonemap.h"

@@ -66,7 +66,8 @@ struct FrameUniforms {
     vec4 froxelRange;     // x: froxel near [m]; y: froxel far [m]; z: slice distribution exponent
     ivec4 froxelDims;     // xyz: froxel grid size; w: tile size [px]
     ivec4 counts;         // x: image width, y: image height [px]; z: volume count; w: light count
-    vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre)
+    vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre);
+                          // w: GPU temporal pass only: this frame's history weight (0 = no history)
     ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
                           // is always on; shadows.h); yzw unused
 };

@@ -1,0 +1,146 @@
+// Temporal bookkeeping (core/temporal.h), the CPU temporal pass and the multi-frame CPU renderer.
+// The pass mirrors shaders/temporal.comp: both evaluate shaders/shared/temporal.h, whose header
+// comment holds the reprojection rule.
+#include "temporal.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "froxel_frame.h"
+#include "parallel.h"
+
+namespace brume {
+namespace {
+
+using glm::ivec3;
+using glm::vec4;
+
+uint64_t fnv1a(uint64_t h, const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+size_t indexOf(ivec3 dims, ivec3 c) {
+    return (static_cast<size_t>(c.z) * static_cast<size_t>(dims.y) + static_cast<size_t>(c.y)) *
+               static_cast<size_t>(dims.x) +
+           static_cast<size_t>(c.x);
+}
+
+shd::HistorySample readTrilinear(const std::vector<vec4>& vol, ivec3 dims, const shd::HistoryTaps& k) {
+    shd::HistorySample h = shd::emptyHistorySample();
+    for (int corner = 0; corner < 8; ++corner) {
+        const ivec3 c(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        const ivec3 at(c.x ? k.hi.x : k.lo.x, c.y ? k.hi.y : k.lo.y, c.z ? k.hi.z : k.lo.z);
+        h = shd::addHistoryTap(h, vol[indexOf(dims, at)], c, k.fractions);
+    }
+    return h;
+}
+
+// The froxel and its six face neighbours that lie inside the grid.
+shd::Bounds neighbourhood(const std::vector<vec4>& vol, ivec3 dims, ivec3 c) {
+    static constexpr ivec3 kOffsets[7] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
+                                          {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    shd::Bounds b = shd::emptyBounds();
+    for (const ivec3& o : kOffsets) {
+        const ivec3 n = c + o;
+        if (glm::any(glm::lessThan(n, ivec3(0))) || glm::any(glm::greaterThanEqual(n, dims))) continue;
+        b = shd::growBounds(b, vol[indexOf(dims, n)]);
+    }
+    return b;
+}
+
+void resolveRow(FroxelVolumes& v, const HistoryVolume& in, HistoryVolume& out, const TemporalState& state,
+                const TemporalFrame& t, int y, int s) {
+    const ivec3 prevDims(state.frame.froxelDims);
+    for (int x = 0; x < v.dims.x; ++x) {
+        const ivec3 c(x, y, s);
+        const size_t i = indexOf(v.dims, c);
+        const shd::HistoryTaps k = shd::historyTaps(c, v.frame, state.frame, t.useHistory ? t.historyWeight : 0.0f);
+        const bool read = k.weight > 0.0f;
+        const shd::HistorySample histS = read ? readTrilinear(in.source, prevDims, k) : shd::emptyHistorySample();
+        const shd::HistorySample histE = read ? readTrilinear(in.extinction, prevDims, k) : shd::emptyHistorySample();
+        out.source[i] = shd::resolveTemporal(v.source[i], histS, neighbourhood(v.source, v.dims, c), k.weight);
+        out.extinction[i] =
+            shd::resolveTemporal(v.mediaExtinction[i], histE, neighbourhood(v.mediaExtinction, v.dims, c), k.weight);
+    }
+}
+
+}  // namespace
+
+uint64_t temporalSceneKey(const CompiledScene& cs, const Scene& scene, glm::ivec3 dims) {
+    uint64_t h = 14695981039346656037ull;
+    h = fnv1a(h, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
+    h = fnv1a(h, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
+    h = fnv1a(h, &cs.ambient, sizeof(cs.ambient));
+    h = fnv1a(h, &dims, sizeof(dims));
+    const float settings[2] = {scene.temporal.enabled ? 1.0f : 0.0f, scene.temporal.history_weight};
+    return fnv1a(h, settings, sizeof(settings));
+}
+
+TemporalFrame beginTemporalFrame(TemporalState& state, const Scene& scene, uint64_t sceneKey, HistoryMode mode) {
+    const bool enabled = scene.temporal.enabled;
+    if (mode == HistoryMode::Restart || !enabled || state.sceneKey != sceneKey) {
+        state.valid = false;
+        state.frameIndex = 0;
+    }
+    TemporalFrame t;
+    t.frameIndex = state.frameIndex;
+    t.jitter = enabled ? shd::temporalJitter(t.frameIndex) : glm::vec3(0.5f);
+    t.useHistory = enabled && state.valid;
+    t.historyWeight = enabled ? scene.temporal.history_weight : 0.0f;
+    t.readIndex = state.lastWritten;
+    t.writeIndex = 1 - state.lastWritten;
+    return t;
+}
+
+void endTemporalFrame(TemporalState& state, const TemporalFrame& t, const shd::FrameUniforms& frame,
+                      uint64_t sceneKey) {
+    state.lastWritten = t.writeIndex;
+    state.valid = true;
+    state.frame = frame;
+    state.sceneKey = sceneKey;
+    state.frameIndex = t.frameIndex + 1;
+}
+
+Camera orbitCamera(const Camera& camera, float degrees) {
+    Camera c = camera;
+    const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::normalize(camera.up));
+    c.position = camera.target + glm::vec3(turn * glm::vec4(camera.position - camera.target, 0.0f));
+    return c;
+}
+
+void temporalPassCpu(FroxelVolumes& v, CpuHistory& history, const TemporalFrame& t, int threads) {
+    const HistoryVolume& in = history.pair[static_cast<size_t>(t.readIndex)];
+    HistoryVolume& out = history.pair[static_cast<size_t>(t.writeIndex)];
+    out.source.resize(v.source.size());
+    out.extinction.resize(v.source.size());
+    parallelFor(v.dims.y * v.dims.z, threads,
+                [&](int r) { resolveRow(v, in, out, history.state, t, r % v.dims.y, r / v.dims.y); });
+    // The integrate pass reads the resolved values.
+    v.source = out.source;
+    v.mediaExtinction = out.extinction;
+}
+
+FroxelResult FroxelCpuRenderer::render(const Scene& scene, const RenderRequest& request) {
+    RenderRequest frame = request;
+    frame.progress = nullptr;  // progress is reported for the last frame only, so it never goes back
+    FroxelResult result;
+    for (int n = 0; n < std::max(request.frames, 1); ++n) {
+        if (n == std::max(request.frames, 1) - 1) frame.progress = request.progress;
+        result = renderFroxelFrameCpu(scene, frame, history_);
+        frame.history = HistoryMode::Continue;
+    }
+    return result;
+}
+
+FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
+    FroxelCpuRenderer renderer;
+    RenderRequest r = request;
+    r.history = HistoryMode::Restart;
+    return renderer.render(scene, r);
+}
+
+}  // namespace brume

@@ -1,0 +1,161 @@
+// Temporal integration, written once for the CPU froxel renderer and the GPU temporal pass.
+//
+// What is blended: the lit froxels, i.e. the source S (rgb, light pass) and the extinction sigma_t
+// (rgb, voxelize pass), between the light and the integrate passes (Hillaire 2015 blends the lit
+// scattering/extinction volume before integration). Blending before integration keeps the
+// integration exact for whatever (S, sigma_t) field results, and it is what removes the slice bands:
+// each frame samples S and sigma_t at a different point inside each froxel (temporalJitter), so the
+// history converges to the froxel's average rather than its value at the centre.
+//
+// Reprojection rule (per froxel (x, y, s) of the current frame):
+//   1. p = world position of the froxel's centre (x + 0.5, y + 0.5, s + 0.5) in the current frame;
+//   2. c = froxelCoordFromWorld(p, previous frame): tile coordinates from last frame's view and
+//      projection, slice coordinate from last frame's slice mapping;
+//   3. rejected (weight 0) when c lies outside last frame's grid (behind the camera, outside the
+//      tiles, past the froxel far): newly visible froxels have no history;
+//   4. history = trilinear read of last frame's resolved volume at c (centres at integer + 0.5,
+//      clamped to the outermost centres);
+//   5. history is clamped per channel to [min, max] of the current frame's froxel and its six
+//      face neighbours (non-finite neighbours skipped): a light switched off or a volume moved
+//      cannot leave more than the neighbourhood allows;
+//   6. weight = history_weight * max(0, 1 - |c - centre| / TEMPORAL_MOTION_FROXELS), so fast
+//      motion (reprojection far from where the froxel was) trusts the history less;
+//   7. resolved = mix(current, clamped history, weight). NaN/Inf never enter: a non-finite current
+//      value is replaced by the clamped history (or 0), a non-finite history is rejected.
+#ifndef BRUME_SHARED_TEMPORAL_H
+#define BRUME_SHARED_TEMPORAL_H
+
+#include "froxel.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// Reprojection distance [froxels] at which the history weight reaches 0.
+BRUME_CONST float TEMPORAL_MOTION_FROXELS = 4.0f;
+// Largest finite float; |x| <= it is false for NaN and +-Inf.
+BRUME_CONST float BRUME_FLOAT_MAX = 3.402823466e38f;
+// The jitter sequence repeats after this many frames (a power of 2: depth stays stratified).
+BRUME_CONST int TEMPORAL_SEQUENCE_LENGTH = 1024;
+
+BRUME_FUNC bool allFinite4(vec4 v) { return all(lessThanEqual(abs(v), vec4(BRUME_FLOAT_MAX))); }
+
+// Van der Corput radical inverse of n in `base`: the digits of n mirrored about the point.
+BRUME_FUNC float radicalInverse(int n, int base) {
+    float inv = 1.0f / float(base);
+    float f = inv;
+    float r = 0.0f;
+    for (int k = n; k > 0; k /= base) {
+        r += f * float(k % base);
+        f *= inv;
+    }
+    return r;
+}
+
+// Sample position inside each froxel for a frame, in [0,1)^3: the Halton sequence (bases 3, 5
+// across the tile, 2 along depth, where the slices band and base 2 stratifies every 2^m frames
+// perfectly), offset by 0.5 so that frame 0 samples the centre, as a render without temporal does.
+BRUME_FUNC vec3 temporalJitter(int frameIndex) {
+    int n = frameIndex % TEMPORAL_SEQUENCE_LENGTH;
+    vec3 h = vec3(radicalInverse(n, 3), radicalInverse(n, 5), radicalInverse(n, 2));
+    return fract(vec3(0.5f) + h);
+}
+
+// Continuous froxel coordinate (x, y in tiles, z in slices) of a world position in frame f: the
+// inverse of worldFromFroxelCoord. w = 1 inside the grid, 0 outside (behind the camera, outside the
+// tiles, past the froxel far). Depths in front of the froxel near belong to slice 0.
+BRUME_FUNC vec4 froxelCoordFromWorld(vec3 p, FrameUniforms f) {
+    vec3 v = vec3(f.viewFromWorld * vec4(p, 1.0f));
+    float z = -v.z;
+    if (!(z > 0.0f)) return vec4(0.0f);
+    float ndcX = v.x / (z * f.projection.x);
+    float ndcY = v.y / (z * f.projection.y);
+    vec2 pixel = vec2((ndcX + 1.0f) * 0.5f * float(f.counts.x), (1.0f - ndcY) * 0.5f * float(f.counts.y));
+    vec2 tile = pixel / float(f.froxelDims.w);
+    float slice = sliceTFromViewDepth(z, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z) * float(f.froxelDims.z);
+    bool inside = tile.x >= 0.0f && tile.y >= 0.0f && tile.x <= float(f.froxelDims.x) &&
+                  tile.y <= float(f.froxelDims.y) && z <= f.froxelRange.y;
+    return vec4(tile, slice, inside ? 1.0f : 0.0f);
+}
+
+// Where froxel `froxel` of frame `cur` reads last frame's history, and with what weight (steps 1-4
+// and 6 of the rule above). Trilinear between the corners lo and hi with fractions `fractions`.
+struct HistoryTaps {
+    ivec3 lo;
+    ivec3 hi;
+    vec3 fractions;  // toward hi
+    float weight;    // history weight in the blend; 0 = rejected
+};
+
+BRUME_FUNC HistoryTaps historyTaps(ivec3 froxel, FrameUniforms cur, FrameUniforms prev, float historyWeight) {
+    vec3 centre = vec3(froxel) + vec3(0.5f);
+    vec4 c = froxelCoordFromWorld(worldFromFroxelCoord(centre, cur), prev);
+    vec3 maxCentre = vec3(ivec3(prev.froxelDims)) - vec3(0.5f);
+    vec3 t = clamp(vec3(c), vec3(0.5f), maxCentre) - vec3(0.5f);
+    HistoryTaps r;
+    r.lo = ivec3(floor(t));
+    r.hi = min(r.lo + ivec3(1), ivec3(prev.froxelDims) - ivec3(1));
+    r.fractions = t - floor(t);
+    float motion = length(vec3(c) - centre);
+    r.weight = c.w * historyWeight * clamp(1.0f - motion / TEMPORAL_MOTION_FROXELS, 0.0f, 1.0f);
+    return r;
+}
+
+// Trilinear read of the history that skips non-finite taps (renormalising the weights of the
+// others), so that one poisoned froxel cannot spread into the froxels that read next to it.
+struct HistorySample {
+    vec4 sum;
+    float weight;  // sum of the finite taps' weights; the value is sum / weight
+};
+
+BRUME_FUNC HistorySample emptyHistorySample() {
+    HistorySample h;
+    h.sum = vec4(0.0f);
+    h.weight = 0.0f;
+    return h;
+}
+
+// Adds the tap at corner (cx, cy, cz) in {0, 1}^3 (0 = lo, 1 = hi) with its trilinear weight.
+BRUME_FUNC HistorySample addHistoryTap(HistorySample h, vec4 value, ivec3 corner, vec3 fractions) {
+    vec3 w3 = mix(vec3(1.0f) - fractions, fractions, vec3(corner));
+    float w = w3.x * w3.y * w3.z;
+    if (w > 0.0f && allFinite4(value)) {
+        h.sum += value * w;
+        h.weight += w;
+    }
+    return h;
+}
+
+// Neighbourhood bounds of the current frame (step 5); start from emptyBounds, grow with each
+// finite neighbour.
+struct Bounds {
+    vec4 lo;
+    vec4 hi;
+};
+
+BRUME_FUNC Bounds emptyBounds() {
+    Bounds b;
+    b.lo = vec4(BRUME_HUGE);
+    b.hi = vec4(-BRUME_HUGE);
+    return b;
+}
+
+BRUME_FUNC Bounds growBounds(Bounds b, vec4 v) {
+    if (!allFinite4(v)) return b;
+    b.lo = min(b.lo, v);
+    b.hi = max(b.hi, v);
+    return b;
+}
+
+// Step 7 for one quantity. `current` is this frame's value, `history` the history read (its finite
+// taps), `bounds` the neighbourhood of `current`, `weight` from historyTaps. Always finite.
+BRUME_FUNC vec4 resolveTemporal(vec4 current, HistorySample history, Bounds bounds, float weight) {
+    bool haveBounds = all(lessThanEqual(bounds.lo, bounds.hi));
+    bool historyOk = weight > 0.0f && haveBounds && history.weight > 0.0f;
+    vec4 h = historyOk ? history.sum / history.weight : vec4(0.0f);
+    vec4 clamped = historyOk ? clamp(h, bounds.lo, bounds.hi) : vec4(0.0f);
+    if (!allFinite4(current)) return clamped;
+    return historyOk ? mix(current, clamped, weight) : current;
+}
+
+BRUME_NAMESPACE_END
+
+#endif

@@ -1,0 +1,51 @@
+// Temporal pass, between light and integrate (core: temporalPassCpu): each froxel's source S and
+// extinction sigma_t are blended with last frame's resolved values, reprojected, clamped to the
+// current neighbourhood and checked for NaN/Inf, by the rule written in shared/temporal.h. The
+// result goes to the history pair's *_OUT images; the frame then copies it into sourceImage and
+// mediaExtinction for the integrate pass (this pass reads their neighbours, so it cannot write them).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define BRUME_FROXEL_IMAGES
+#include "resources.glsl"
+
+layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+
+const ivec3 kNeighbours[7] = ivec3[7](ivec3(0, 0, 0), ivec3(-1, 0, 0), ivec3(1, 0, 0), ivec3(0, -1, 0),
+                                      ivec3(0, 1, 0), ivec3(0, 0, -1), ivec3(0, 0, 1));
+
+bool inGrid(ivec3 c, ivec3 dims) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, dims)); }
+
+// The froxel and its six face neighbours inside the grid, for S (which = 0) or sigma_t (which = 1).
+Bounds neighbourhood(ivec3 c, int which) {
+    Bounds b = emptyBounds();
+    ivec3 dims = frame.froxelDims.xyz;
+    for (int i = 0; i < 7; ++i) {
+        ivec3 n = c + kNeighbours[i];
+        if (!inGrid(n, dims)) continue;
+        b = growBounds(b, which == 0 ? imageLoad(sourceImage, n) : imageLoad(mediaExtinction, n));
+    }
+    return b;
+}
+
+HistorySample readHistory(HistoryTaps k, int which) {
+    HistorySample h = emptyHistorySample();
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 c = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        ivec3 at = ivec3(c.x == 1 ? k.hi.x : k.lo.x, c.y == 1 ? k.hi.y : k.lo.y, c.z == 1 ? k.hi.z : k.lo.z);
+        vec4 v = which == 0 ? imageLoad(historySourceIn, at) : imageLoad(historyExtinctionIn, at);
+        h = addHistoryTap(h, v, c, k.fractions);
+    }
+    return h;
+}
+
+void main() {
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
+    HistoryTaps k = historyTaps(id, frame, previousFrame, frame.jitter.w);
+    bool read = k.weight > 0.0f;
+    HistorySample histS = read ? readHistory(k, 0) : emptyHistorySample();
+    HistorySample histE = read ? readHistory(k, 1) : emptyHistorySample();
+    imageStore(historySourceOut, id, resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight));
+    imageStore(historyExtinctionOut, id,
+               resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight));
+}
