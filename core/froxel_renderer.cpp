@@ -62,8 +62,10 @@ size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
         vec3 perSigmaS = vec3(v.frame.ambient);
         for (const shd::LightData& l : cs.lights) {
             const shd::LightSample ls = shd::evalLight(l, p);
-            perSigmaS += shd::inScatterPerSigmaS(l, ls, viewDir, g) *
-                         lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, v.frame.shadows.x);
+            const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
+            // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
+            if (inScatter == vec3(0.0f)) continue;
+            perSigmaS += inScatter * lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, v.frame.shadows.x);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);

@@ -25,8 +25,10 @@ void main() {
     vec3 perSigmaS = frame.ambient.rgb;
     for (int i = 0; i < frame.counts.w; ++i) {
         LightSample ls = evalLight(lights[i], p);
-        perSigmaS += inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a) *
-                     lightFogTransmittance(lights[i], p, ls.toLight, ls.distance);
+        vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
+        // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
+        if (inScatter == vec3(0.0f)) continue;
+        perSigmaS += inScatter * lightFogTransmittance(lights[i], p, ls.toLight, ls.distance);
     }
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));
