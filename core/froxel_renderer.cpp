@@ -44,7 +44,7 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
 
 // Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
 // light + ambient) + emission. Returns how many froxels of the row were lit.
-size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
+size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& v, int y, int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
         const size_t i = froxelIndex(v.dims, x, y, s);
@@ -60,12 +60,14 @@ size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
         const vec3 viewDir = glm::normalize(p - vec3(v.frame.cameraPosition));
         const float g = v.mediaScatteringG[i].w;
         vec3 perSigmaS = vec3(v.frame.ambient);
-        for (const shd::LightData& l : cs.lights) {
+        for (size_t li = 0; li < cs.lights.size(); ++li) {
+            const shd::LightData& l = cs.lights[li];
             const shd::LightSample ls = shd::evalLight(l, p);
             const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;
-            perSigmaS += inScatter * lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, v.frame.shadows.x);
+            perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), ivec3(x, y, s), p,
+                                                            ls.toLight, ls.distance);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);
@@ -165,6 +167,7 @@ FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
     FroxelVolumes& v = result.volumes;
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
     frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
+    frame.shadows.y = request.shadowReduction > 0 ? request.shadowReduction : shadowVolumeReduction(request.quality);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 
@@ -177,10 +180,12 @@ FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
     parallelFor(rows, threads, [&](int r) { voxelizeRow(cs, v, r % v.dims.y, r / v.dims.y); }, report);
     progress.finishedPass(rows);
 
+    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
+
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
     parallelFor(rows, threads,
-                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, v, r % v.dims.y, r / v.dims.y); },
+                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, v, r % v.dims.y, r / v.dims.y); },
                 report);
     progress.finishedPass(rows);
     for (size_t lit : litPerRow) v.litFroxels += lit;

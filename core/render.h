@@ -23,6 +23,7 @@ struct RenderRequest {
     Quality quality = Quality::High;
     int frames = 1;        // froxel renderer: frames of temporal accumulation (the temporal issue)
     int threads = 0;       // 0 = every core
+    int shadowReduction = 0;  // fog transmittance volume reduction (core/shadows.h); 0 = the quality's
     ProgressFn progress;   // optional
 };
 

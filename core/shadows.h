@@ -2,6 +2,8 @@
 // forms of shaders/shared/shadows.h (the GPU's light and geometry shaders run the same loop).
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "compile.h"
@@ -18,5 +20,27 @@ bool localLightFogShadows(Quality q);
 // light) through every analytic volume except depth fog; 1 for a light shd::fogShadowsLight skips.
 glm::vec3 lightFogTransmittance(const CompiledScene& cs, const shd::LightData& l, glm::vec3 p, glm::vec3 toLight,
                                 float distance, int localLightsToo);
+
+// Transmittance volume reduction r (shaders/shared/shadow_volume.h) at this quality: the light pass
+// evaluates 1/r^3 of the closed forms, plus the froxels at shadow edges. Measured trade in
+// docs/shadows.md.
+int shadowVolumeReduction(Quality q);
+
+// Each shadowing light's transmittance on the reduced grid, light after light: index
+// ((light * d.z + z) * d.y + y) * d.x + x, d = shd::shadowVolumeDims (the GPU's image stacks the
+// lights along z the same way). Lights shd::fogShadowsLight skips hold 1.
+struct ShadowVolume {
+    glm::ivec3 dims{0};
+    int reduction = 1;
+    std::vector<glm::vec4> transmittance;  // rgb transmittance, a unused
+};
+
+ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
+                                 int threads);
+
+// The light pass's transmittance toward light `light` for froxel `froxel` (sample point p): the
+// volume's trilinear blend where its 8 cells agree, the exact closed form where they do not.
+glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
+                                 int light, glm::ivec3 froxel, glm::vec3 p, glm::vec3 toLight, float distance);
 
 }  // namespace brume

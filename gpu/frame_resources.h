@@ -24,6 +24,10 @@ struct FrameResources {
     glm::ivec3 froxelDims{0};
     GpuImage mediaScatteringG, mediaExtinction, mediaEmission, source, integratedScattering, integratedTransmittance;
 
+    // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims x lights along z.
+    glm::ivec3 shadowExtent{0};
+    GpuImage shadowTransmittance;
+
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage
     GpuImage sceneDepth;   // r32f view depth, colour attachment 1 and storage

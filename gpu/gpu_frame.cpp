@@ -4,6 +4,7 @@
 
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/brume.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
@@ -105,6 +106,18 @@ Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty
     return {};
 }
 
+Result<void> GpuRenderer::State::ensureShadowImage(glm::ivec3 extent, bool& dirty) {
+    if (res.shadowExtent == extent) return {};
+    res.shadowExtent = glm::ivec3(0);
+    res.shadowTransmittance = GpuImage{};
+    Result<GpuImage> img = createImage(*device, extentOf(extent), true, kVolumeFormat, kVolumeUsage, "shadowTransmittance");
+    if (!img) return img.error();
+    res.shadowTransmittance = std::move(img.value());
+    res.shadowExtent = extent;
+    dirty = true;
+    return {};
+}
+
 Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(dims.x) * static_cast<VkDeviceSize>(dims.y) *
                                static_cast<VkDeviceSize>(dims.z) * sizeof(glm::vec4);
@@ -116,7 +129,7 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 }
 
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
-                                         size_t vertexBytes) {
+                                         size_t vertexBytes, int shadowReduction) {
     bool dirty = false;
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     BRUME_TRY(ensureBuffer(res.frame, sizeof(shd::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Memory::Upload,
@@ -133,6 +146,10 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            Memory::Upload, "geometry vertices", vertexDirty));
     BRUME_TRY(ensureFroxelImages(dims, dirty));
     BRUME_TRY(ensureScreenImages(size, dirty));
+    // Lights stacked along z; at least one layer so that the image exists without lights.
+    const glm::ivec3 shadowDims = shd::shadowVolumeDims(dims, shadowReduction);
+    BRUME_TRY(ensureShadowImage({shadowDims.x, shadowDims.y, shadowDims.z * std::max<int>(1, static_cast<int>(cs.lights.size()))},
+                                dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }
@@ -142,6 +159,7 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     vkCmdFillBuffer(cmd, res.counters.buffer.get(), 0, VK_WHOLE_SIZE, 0);
     std::vector<VkImage> storageImages{res.output.image.get()};
     for (const GpuImage* img : froxelImages(res)) storageImages.push_back(img->image.get());
+    storageImages.push_back(res.shadowTransmittance.image.get());
     // Contents are rewritten every frame, so the old layout and contents are discarded; the
     // previous frame finished before its fence was signalled, so nothing earlier needs waiting for.
     transition(cmd, storageImages, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
@@ -157,6 +175,10 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
 
     timer.begin(cmd, "voxelize");
     recordVoxelize(cmd, voxelize, bindings, res.froxelDims);
+    timer.end(cmd);
+    timer.begin(cmd, "shadow volume");
+    computeToComputeBarrier(cmd);
+    recordShadowVolume(cmd, shadowVolume, bindings, res.shadowExtent);
     timer.end(cmd);
     timer.begin(cmd, "light");
     computeToComputeBarrier(cmd);

@@ -50,7 +50,8 @@ Result<void> GpuRenderer::State::createPasses() {
     Result<GeometryPass> g = GeometryPass::create(*device, layout);
     if (!g) return g.error();
     geometry = std::move(g.value());
-    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&light, &createLightPass},
+    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&shadowVolume, &createShadowVolumePass},
+                                std::pair{&light, &createLightPass},
                                 std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
         Result<ComputePass> p = create(*device, layout);
         if (!p) return p.error();
@@ -115,12 +116,13 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
     frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;  // as renderFroxelCpu
+    frame.shadows.y = request.shadowReduction > 0 ? request.shadowReduction : shadowVolumeReduction(request.quality);
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
     const std::vector<GeometryVertex> vertices = tessellateGeometry(scene.geometry, frame);
 
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex)));
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
     std::memcpy(r.frame.mapped, &frame, sizeof(frame));

@@ -73,7 +73,7 @@ void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const Fr
     const std::array<const Buffer*, 4> buffers{&r.frame, &r.volumes, &r.lights, &r.counters};
     const std::array<const GpuImage*, shd::BINDING_COUNT - 4> images{
         &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
-        &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};
+        &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output, &r.shadowTransmittance};
     std::array<VkDescriptorBufferInfo, 4> bufferInfos{};
     std::array<VkDescriptorImageInfo, images.size()> imageInfos{};
     std::array<VkWriteDescriptorSet, shd::BINDING_COUNT> writes{};

@@ -24,7 +24,7 @@ struct GpuRenderer::State {
     FenceOwner fence;
     DescriptorBindings bindings;
     GeometryPass geometry;
-    ComputePass voxelize, light, integrate, composite;
+    ComputePass voxelize, shadowVolume, light, integrate, composite;
     PassTimer timer;
     FrameResources res;
     std::array<Buffer, 6> volumeReadback;
@@ -35,8 +35,10 @@ struct GpuRenderer::State {
                               const char* name, bool& dirty);
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
+    Result<void> ensureShadowImage(glm::ivec3 extent, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
-    Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes);
+    Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
+                         int shadowReduction);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes);
     void recordReadback(bool readBackVolumes);
     Result<double> submitAndWait();

@@ -6,3 +6,25 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
     for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumes[i], p, toLight, distance);
     return exp(-tau);
 }
+
+#ifdef BRUME_FROXEL_IMAGES
+vec3 shadowCell(int light, ivec3 cells, ivec3 c) {
+    return imageLoad(shadowTransmittance, ivec3(c.xy, light * cells.z + c.z)).rgb;
+}
+
+// The light pass's transmittance (core: froxelFogTransmittance): the shadow volume's trilinear
+// blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
+vec3 froxelFogTransmittance(int light, ivec3 froxel, vec3 p, vec3 toLight, float distance) {
+    if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadows.y);
+    ShadowLookup k = shadowLookup(froxel, frame.froxelDims.xyz, frame.shadows.y);
+    ivec3 lo = k.cell;
+    ivec3 hi = min(k.cell + ivec3(1), cells - ivec3(1));
+    ShadowBlend b = shadowBlend(shadowCell(light, cells, lo), shadowCell(light, cells, ivec3(hi.x, lo.y, lo.z)),
+                                shadowCell(light, cells, ivec3(lo.x, hi.y, lo.z)), shadowCell(light, cells, ivec3(hi.x, hi.y, lo.z)),
+                                shadowCell(light, cells, ivec3(lo.x, lo.y, hi.z)), shadowCell(light, cells, ivec3(hi.x, lo.y, hi.z)),
+                                shadowCell(light, cells, ivec3(lo.x, hi.y, hi.z)), shadowCell(light, cells, hi), k.weights);
+    if (b.trusted) return b.transmittance;
+    return lightFogTransmittance(lights[light], p, toLight, distance);
+}
+#endif

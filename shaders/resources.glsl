@@ -18,4 +18,5 @@ layout(set = 0, binding = BINDING_INTEGRATED_TRANSMITTANCE, rgba32f) uniform ima
 layout(set = 0, binding = BINDING_SCENE_COLOR, rgba32f) uniform image2D sceneColor;
 layout(set = 0, binding = BINDING_SCENE_DEPTH, r32f) uniform image2D sceneDepth;
 layout(set = 0, binding = BINDING_OUTPUT, rgba32f) uniform image2D outputImage;
+layout(set = 0, binding = BINDING_SHADOW_TRANSMITTANCE, rgba32f) uniform image3D shadowTransmittance;
 #endif

@@ -9,5 +9,6 @@
 #include "integrate.h"
 #include "distant.h"
 #include "shadows.h"
+#include "shadow_volume.h"
 #include "tonemap.h"
 #endif

@@ -68,7 +68,8 @@ struct FrameUniforms {
     ivec4 counts;         // x: image width, y: image height [px]; z: volume count; w: light count
     vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre)
     ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
-                          // is always on; shadows.h); yzw unused
+                          // is always on; shadows.h); y: transmittance volume reduction r >= 1
+                          // (shadow_volume.h); zw unused
 };
 
 BRUME_NAMESPACE_END

@@ -1,0 +1,67 @@
+// The fog transmittance volume: each shadowing light's transmittance (shadows.h) evaluated exactly
+// on a grid that keeps every r-th froxel in each axis (r = FrameUniforms.shadows.y, per preset), then
+// read back by the light pass with trilinear weights. Where the 8 cells around a froxel disagree by
+// more than SHADOW_VOLUME_SPREAD (a shadow edge crosses them), the interpolation is not trusted and
+// the froxel evaluates its transmittance exactly: smooth regions cost 1/r^3 of the closed forms,
+// edges stay exact, and no light leaks through a dense block's shadow (docs/shadows.md, "Cost").
+//
+// Cell c of axis a samples froxel min(c * r, dims - 1) at the frame's jitter, so every cell sits on
+// a froxel's own sample point: at r = 1 the volume is the exact transmittance, and so is every
+// froxel whose coordinates are multiples of r.
+#ifndef BRUME_SHARED_SHADOW_VOLUME_H
+#define BRUME_SHARED_SHADOW_VOLUME_H
+
+#include "shadows.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// Largest difference (any channel) between the 8 cells' transmittances that is interpolated.
+BRUME_CONST float SHADOW_VOLUME_SPREAD = 0.05f;
+
+// Cells per axis: enough that the last froxel has a cell at or past it.
+BRUME_FUNC ivec3 shadowVolumeDims(ivec3 froxelDims, int r) {
+    return (froxelDims - ivec3(1) + ivec3(r - 1)) / r + ivec3(1);
+}
+
+// The froxel whose sample point cell c holds.
+BRUME_FUNC ivec3 shadowCellFroxel(ivec3 cell, ivec3 froxelDims, int r) {
+    return min(cell * r, froxelDims - ivec3(1));
+}
+
+struct ShadowLookup {
+    ivec3 cell;    // lower corner; the upper corner is cell + 1 (within shadowVolumeDims)
+    vec3 weights;  // trilinear weights toward the upper corner, in [0, 1)
+};
+
+BRUME_FUNC ShadowLookup shadowLookup(ivec3 froxel, ivec3 froxelDims, int r) {
+    ShadowLookup k;
+    k.cell = froxel / r;
+    ivec3 lo = k.cell * r;
+    ivec3 hi = min(lo + ivec3(r), froxelDims - ivec3(1));
+    vec3 span = vec3(max(hi - lo, ivec3(1)));
+    k.weights = vec3(froxel - lo) / span;
+    return k;
+}
+
+struct ShadowBlend {
+    vec3 transmittance;  // trilinear blend of the 8 cells
+    bool trusted;        // false: the cells disagree, evaluate exactly
+};
+
+// c<z><y><x>: c000 is the lower corner, c001 one step along x, c111 the upper corner.
+BRUME_FUNC ShadowBlend shadowBlend(vec3 c000, vec3 c001, vec3 c010, vec3 c011, vec3 c100, vec3 c101, vec3 c110,
+                                   vec3 c111, vec3 w) {
+    vec3 lo = min(min(min(c000, c001), min(c010, c011)), min(min(c100, c101), min(c110, c111)));
+    vec3 hi = max(max(max(c000, c001), max(c010, c011)), max(max(c100, c101), max(c110, c111)));
+    vec3 spread = hi - lo;
+    ShadowBlend b;
+    b.trusted = max(spread.x, max(spread.y, spread.z)) <= SHADOW_VOLUME_SPREAD;
+    vec3 y0 = mix(mix(c000, c001, w.x), mix(c010, c011, w.x), w.y);
+    vec3 y1 = mix(mix(c100, c101, w.x), mix(c110, c111, w.x), w.y);
+    b.transmittance = mix(y0, y1, w.z);
+    return b;
+}
+
+BRUME_NAMESPACE_END
+
+#endif
