@@ -114,8 +114,8 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
 }
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
-void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const FroxelVolumes& v, Image& img,
-                  int y) {
+void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const FroxelVolumes& v,
+                  Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -129,8 +129,7 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Fr
         if (hit.hit()) {
             // The fog's shadow on the surface, as the GPU's geometry pass computes it.
             const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
-                return lightFogTransmittance(cs, cs.lights[static_cast<size_t>(i)], from, toLight, dist,
-                                             v.frame.shadows.x);
+                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist);
             };
             background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
@@ -195,7 +194,7 @@ FroxelResult renderFroxelCpu(const Scene& scene, const RenderRequest& request) {
     progress.finishedPass(columns);
 
     const GeometrySet geometry(scene.geometry);
-    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, v, result.image, y); }, report);
+    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, v, result.image, y); }, report);
     return result;
 }
 

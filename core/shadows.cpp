@@ -22,10 +22,18 @@ glm::vec3 lightFogTransmittance(const CompiledScene& cs, const shd::LightData& l
 
 namespace {
 
-size_t shadowIndex(glm::ivec3 d, int light, glm::ivec3 c) {
-    const size_t z = static_cast<size_t>(light) * static_cast<size_t>(d.z) + static_cast<size_t>(c.z);
-    return (z * static_cast<size_t>(d.y) + static_cast<size_t>(c.y)) * static_cast<size_t>(d.x) +
-           static_cast<size_t>(c.x);
+size_t shadowIndex(glm::ivec3 d, int light, glm::ivec3 c) { return static_cast<size_t>(shd::shadowVolumeIndex(d, light, c)); }
+
+// The 8 cells around lookup k, blended (fog_shadow.glsl blendShadowCells).
+shd::ShadowBlend blendShadowCells(const ShadowVolume& sv, int light, const shd::ShadowLookup& k) {
+    // The upper corner stays inside the volume: a zero weight makes its value irrelevant.
+    const glm::ivec3 hi = glm::min(k.cell + glm::ivec3(1), sv.dims - glm::ivec3(1));
+    auto at = [&](int x, int y, int z) {
+        const glm::ivec3 c(x ? hi.x : k.cell.x, y ? hi.y : k.cell.y, z ? hi.z : k.cell.z);
+        return glm::vec3(sv.transmittance[shadowIndex(sv.dims, light, c)]);
+    };
+    return shd::shadowBlend(at(0, 0, 0), at(1, 0, 0), at(0, 1, 0), at(1, 1, 0), at(0, 0, 1), at(1, 0, 1),
+                            at(0, 1, 1), at(1, 1, 1), k.weights);
 }
 
 }  // namespace
@@ -59,17 +67,21 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
                                  int light, glm::ivec3 froxel, glm::vec3 p, glm::vec3 toLight, float distance) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
     if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
-    const shd::ShadowLookup k = shd::shadowLookup(froxel, glm::ivec3(frame.froxelDims), sv.reduction);
-    // The upper corner stays inside the volume: a zero weight makes its value irrelevant.
-    const glm::ivec3 hi = glm::min(k.cell + glm::ivec3(1), sv.dims - glm::ivec3(1));
-    auto at = [&](int x, int y, int z) {
-        return glm::vec3(sv.transmittance[shadowIndex(sv.dims, light, glm::ivec3(x ? hi.x : k.cell.x,
-                                                                                   y ? hi.y : k.cell.y,
-                                                                                   z ? hi.z : k.cell.z))]);
-    };
-    const shd::ShadowBlend b = shd::shadowBlend(at(0, 0, 0), at(1, 0, 0), at(0, 1, 0), at(1, 1, 0), at(0, 0, 1),
-                                                at(1, 0, 1), at(0, 1, 1), at(1, 1, 1), k.weights);
+    const shd::ShadowBlend b =
+        blendShadowCells(sv, light, shd::shadowLookup(froxel, glm::ivec3(frame.froxelDims), sv.reduction));
     if (b.trusted) return b.transmittance;
+    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x);
+}
+
+glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
+                                  int light, glm::vec3 p, glm::vec3 toLight, float distance) {
+    const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
+    if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
+    const shd::SurfaceShadowLookup s = shd::shadowLookupAt(shd::froxelCoordFromWorld(p, frame), frame, sv.reduction);
+    if (s.inside) {
+        const shd::ShadowBlend b = blendShadowCells(sv, light, s.k);
+        if (b.trusted) return b.transmittance;
+    }
     return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x);
 }
 

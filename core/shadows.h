@@ -43,4 +43,9 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
 glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
                                  int light, glm::ivec3 froxel, glm::vec3 p, glm::vec3 toLight, float distance);
 
+// The same for a surface point p (the shadow ray's origin): the volume at p's froxel coordinates
+// inside the grid, the exact closed form outside it (past the froxel far) and at shadow edges.
+glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
+                                  int light, glm::vec3 p, glm::vec3 toLight, float distance);
+
 }  // namespace brume

@@ -24,9 +24,9 @@ struct FrameResources {
     glm::ivec3 froxelDims{0};
     GpuImage mediaScatteringG, mediaExtinction, mediaEmission, source, integratedScattering, integratedTransmittance;
 
-    // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims x lights along z.
-    glm::ivec3 shadowExtent{0};
-    GpuImage shadowTransmittance;
+    // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims cells per light.
+    glm::ivec3 shadowExtent{0};  // cells x, y and z * lights: the shadow volume pass's dispatch
+    Buffer shadowTransmittance;  // vec4[], at least one entry
 
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage

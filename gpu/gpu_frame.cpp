@@ -106,18 +106,6 @@ Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty
     return {};
 }
 
-Result<void> GpuRenderer::State::ensureShadowImage(glm::ivec3 extent, bool& dirty) {
-    if (res.shadowExtent == extent) return {};
-    res.shadowExtent = glm::ivec3(0);
-    res.shadowTransmittance = GpuImage{};
-    Result<GpuImage> img = createImage(*device, extentOf(extent), true, kVolumeFormat, kVolumeUsage, "shadowTransmittance");
-    if (!img) return img.error();
-    res.shadowTransmittance = std::move(img.value());
-    res.shadowExtent = extent;
-    dirty = true;
-    return {};
-}
-
 Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(dims.x) * static_cast<VkDeviceSize>(dims.y) *
                                static_cast<VkDeviceSize>(dims.z) * sizeof(glm::vec4);
@@ -146,10 +134,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            Memory::Upload, "geometry vertices", vertexDirty));
     BRUME_TRY(ensureFroxelImages(dims, dirty));
     BRUME_TRY(ensureScreenImages(size, dirty));
-    // Lights stacked along z; at least one layer so that the image exists without lights.
-    const glm::ivec3 shadowDims = shd::shadowVolumeDims(dims, shadowReduction);
-    BRUME_TRY(ensureShadowImage({shadowDims.x, shadowDims.y, shadowDims.z * std::max<int>(1, static_cast<int>(cs.lights.size()))},
-                                dirty));
+    const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
+    res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
+    const size_t entries = static_cast<size_t>(cells.x) * static_cast<size_t>(cells.y) * static_cast<size_t>(cells.z) *
+                           std::max<size_t>(cs.lights.size(), 1);
+    BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
+                           "shadow transmittance", dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }
@@ -159,7 +149,6 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     vkCmdFillBuffer(cmd, res.counters.buffer.get(), 0, VK_WHOLE_SIZE, 0);
     std::vector<VkImage> storageImages{res.output.image.get()};
     for (const GpuImage* img : froxelImages(res)) storageImages.push_back(img->image.get());
-    storageImages.push_back(res.shadowTransmittance.image.get());
     // Contents are rewritten every frame, so the old layout and contents are discarded; the
     // previous frame finished before its fence was signalled, so nothing earlier needs waiting for.
     transition(cmd, storageImages, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
@@ -169,16 +158,19 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
+    // First: the light pass and the surfaces of the geometry pass read it.
+    timer.begin(cmd, "shadow volume");
+    recordShadowVolume(cmd, shadowVolume, bindings, res.shadowExtent);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    timer.end(cmd);
+
     timer.begin(cmd, "geometry");
     geometry.record(cmd, bindings, res, vertexCount, ambient, cameraFar);
     timer.end(cmd);
 
     timer.begin(cmd, "voxelize");
     recordVoxelize(cmd, voxelize, bindings, res.froxelDims);
-    timer.end(cmd);
-    timer.begin(cmd, "shadow volume");
-    computeToComputeBarrier(cmd);
-    recordShadowVolume(cmd, shadowVolume, bindings, res.shadowExtent);
     timer.end(cmd);
     timer.begin(cmd, "light");
     computeToComputeBarrier(cmd);

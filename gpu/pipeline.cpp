@@ -12,7 +12,8 @@ namespace {
 
 VkDescriptorType bindingType(int binding) {
     if (binding == shd::BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    if (binding <= shd::BINDING_COUNTERS) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    if (binding <= shd::BINDING_COUNTERS || binding == shd::BINDING_SHADOW_TRANSMITTANCE)
+        return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
 
@@ -48,8 +49,8 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
 
     const std::array<VkDescriptorPoolSize, 3> sizes{{
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 4)},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 5)},
     }};
     VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = 1;
@@ -71,10 +72,10 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
 
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
     const std::array<const Buffer*, 4> buffers{&r.frame, &r.volumes, &r.lights, &r.counters};
-    const std::array<const GpuImage*, shd::BINDING_COUNT - 4> images{
+    const std::array<const GpuImage*, shd::BINDING_COUNT - 5> images{
         &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
-        &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output, &r.shadowTransmittance};
-    std::array<VkDescriptorBufferInfo, 4> bufferInfos{};
+        &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};
+    std::array<VkDescriptorBufferInfo, 5> bufferInfos{};
     std::array<VkDescriptorImageInfo, images.size()> imageInfos{};
     std::array<VkWriteDescriptorSet, shd::BINDING_COUNT> writes{};
     for (int i = 0; i < shd::BINDING_COUNT; ++i) {
@@ -84,7 +85,10 @@ void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const Fr
         w.dstBinding = static_cast<uint32_t>(i);
         w.descriptorCount = 1;
         w.descriptorType = bindingType(i);
-        if (i < 4) {
+        if (i == shd::BINDING_SHADOW_TRANSMITTANCE) {
+            bufferInfos[4] = {r.shadowTransmittance.buffer.get(), 0, VK_WHOLE_SIZE};
+            w.pBufferInfo = &bufferInfos[4];
+        } else if (i < 4) {
             bufferInfos[static_cast<size_t>(i)] = {buffers[static_cast<size_t>(i)]->buffer.get(), 0, VK_WHOLE_SIZE};
             w.pBufferInfo = &bufferInfos[static_cast<size_t>(i)];
         } else {

@@ -35,7 +35,6 @@ struct GpuRenderer::State {
                               const char* name, bool& dirty);
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
-    Result<void> ensureShadowImage(glm::ivec3 extent, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction);

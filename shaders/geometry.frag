@@ -26,7 +26,7 @@ void main() {
         // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
         vec3 m = abs(worldPos);
         vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
-        radiance += direct * lightFogTransmittance(lights[i], origin, ls.toLight, ls.distance);
+        radiance += direct * surfaceFogTransmittance(i, origin, ls.toLight, ls.distance);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

@@ -7,6 +7,7 @@ layout(std140, set = 0, binding = BINDING_FRAME) uniform FrameBlock { FrameUnifo
 layout(std430, set = 0, binding = BINDING_VOLUMES) readonly buffer VolumeBlock { VolumeData volumes[]; };
 layout(std430, set = 0, binding = BINDING_LIGHTS) readonly buffer LightBlock { LightData lights[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBlock { FroxelCounters counters; };
+layout(std430, set = 0, binding = BINDING_SHADOW_TRANSMITTANCE) buffer ShadowBlock { vec4 shadowTransmittance[]; };
 
 #ifdef BRUME_FROXEL_IMAGES
 layout(set = 0, binding = BINDING_MEDIA_SCATTERING, rgba32f) uniform image3D mediaScatteringG;
@@ -18,5 +19,4 @@ layout(set = 0, binding = BINDING_INTEGRATED_TRANSMITTANCE, rgba32f) uniform ima
 layout(set = 0, binding = BINDING_SCENE_COLOR, rgba32f) uniform image2D sceneColor;
 layout(set = 0, binding = BINDING_SCENE_DEPTH, r32f) uniform image2D sceneDepth;
 layout(set = 0, binding = BINDING_OUTPUT, rgba32f) uniform image2D outputImage;
-layout(set = 0, binding = BINDING_SHADOW_TRANSMITTANCE, rgba32f) uniform image3D shadowTransmittance;
 #endif

@@ -3,7 +3,6 @@
 // that are not fog-shadowed hold 1 and are never read.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 
@@ -18,5 +17,6 @@ void main() {
     ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadows.y);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
     LightSample ls = evalLight(lights[light], p);
-    imageStore(shadowTransmittance, id, vec4(lightFogTransmittance(lights[light], p, ls.toLight, ls.distance), 0.0f));
+    shadowTransmittance[shadowVolumeIndex(cells, light, cell)] =
+        vec4(lightFogTransmittance(lights[light], p, ls.toLight, ls.distance), 0.0f);
 }

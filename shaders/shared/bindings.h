@@ -20,8 +20,10 @@ BRUME_CONST int BINDING_INTEGRATED_TRANSMITTANCE = 9;  // image3D rgba32f
 BRUME_CONST int BINDING_SCENE_COLOR = 10;      // image2D rgba32f: shaded surfaces / sky
 BRUME_CONST int BINDING_SCENE_DEPTH = 11;      // image2D r32f: view depth [m] (camera far = sky)
 BRUME_CONST int BINDING_OUTPUT = 12;           // image2D rgba32f: the composited image
-BRUME_CONST int BINDING_SHADOW_TRANSMITTANCE = 13;  // image3D rgba32f: fog transmittance volume, lights
-                                                     // stacked along z (shadow_volume.h)
+BRUME_CONST int BINDING_SHADOW_TRANSMITTANCE = 13;  // storage vec4[]: fog transmittance volume
+                                                     // (shadow_volume.h shadowVolumeIndex); a buffer, not an
+                                                     // image: lavapipe's imageLoad is ~3x dearer, and the
+                                                     // geometry pass may read it
 BRUME_CONST int BINDING_COUNT = 14;
 
 // Written by the light pass with atomics; 16 bytes in std430.

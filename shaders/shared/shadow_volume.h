@@ -11,6 +11,7 @@
 #ifndef BRUME_SHARED_SHADOW_VOLUME_H
 #define BRUME_SHARED_SHADOW_VOLUME_H
 
+#include "froxel.h"
 #include "shadows.h"
 
 BRUME_NAMESPACE_BEGIN
@@ -28,6 +29,12 @@ BRUME_FUNC ivec3 shadowCellFroxel(ivec3 cell, ivec3 froxelDims, int r) {
     return min(cell * r, froxelDims - ivec3(1));
 }
 
+// Entry of cell c of light `light`: the lights' grids follow one another, each z-major like the
+// froxel volumes (the CPU's vector and the GPU's storage buffer alike).
+BRUME_FUNC int shadowVolumeIndex(ivec3 cells, int light, ivec3 c) {
+    return ((light * cells.z + c.z) * cells.y + c.y) * cells.x + c.x;
+}
+
 struct ShadowLookup {
     ivec3 cell;    // lower corner; the upper corner is cell + 1 (within shadowVolumeDims)
     vec3 weights;  // trilinear weights toward the upper corner, in [0, 1)
@@ -41,6 +48,37 @@ BRUME_FUNC ShadowLookup shadowLookup(ivec3 froxel, ivec3 froxelDims, int r) {
     vec3 span = vec3(max(hi - lo, ivec3(1)));
     k.weights = vec3(froxel - lo) / span;
     return k;
+}
+
+// Continuous froxel coordinates of a world point (x, y in tiles, z in slices; the inverse of
+// froxel.h worldFromFroxelCoord), for surfaces, which do not sit on froxel sample points.
+BRUME_FUNC vec3 froxelCoordFromWorld(vec3 p, FrameUniforms f) {
+    vec3 view = vec3(f.viewFromWorld * vec4(p, 1.0f));
+    float depth = max(-view.z, 1.0e-6f);
+    vec2 ndc = vec2(view.x / (depth * f.projection.x), view.y / (depth * f.projection.y));
+    vec2 pixel = vec2(0.5f * (ndc.x + 1.0f) * float(f.counts.x), 0.5f * (1.0f - ndc.y) * float(f.counts.y));
+    float t = sliceTFromViewDepth(depth, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
+    return vec3(pixel / float(f.froxelDims.w), t * float(f.froxelDims.z));
+}
+
+struct SurfaceShadowLookup {
+    ShadowLookup k;
+    bool inside;  // false: outside the grid's sample points (past the froxel far, at the borders):
+                  // the caller evaluates exactly
+};
+
+// The lookup of a point at continuous froxel coordinates `coord` (froxelCoordFromWorld).
+BRUME_FUNC SurfaceShadowLookup shadowLookupAt(vec3 coord, FrameUniforms f, int r) {
+    ivec3 dims = ivec3(f.froxelDims);
+    vec3 u = coord - vec3(f.jitter);  // in froxel indices: froxel i's sample point is at u = i
+    SurfaceShadowLookup s;
+    s.inside = all(greaterThanEqual(u, vec3(0.0f))) && all(lessThanEqual(u, vec3(dims - ivec3(1))));
+    ivec3 base = min(ivec3(max(u, vec3(0.0f))), dims - ivec3(1));
+    s.k.cell = base / r;
+    ivec3 lo = s.k.cell * r;
+    ivec3 hi = min(lo + ivec3(r), dims - ivec3(1));
+    s.k.weights = clamp((u - vec3(lo)) / vec3(max(hi - lo, ivec3(1))), vec3(0.0f), vec3(1.0f));
+    return s;
 }
 
 struct ShadowBlend {
