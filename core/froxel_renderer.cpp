@@ -60,13 +60,14 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& 
         const vec3 viewDir = glm::normalize(p - vec3(v.frame.cameraPosition));
         const float g = v.mediaScatteringG[i].w;
         vec3 perSigmaS = vec3(v.frame.ambient);
+        const shd::ShadowLookup shadow = shd::shadowLookup(ivec3(x, y, s), v.dims, sv.reduction);
         for (size_t li = 0; li < cs.lights.size(); ++li) {
             const shd::LightData& l = cs.lights[li];
             const shd::LightSample ls = shd::evalLight(l, p);
             const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;
-            perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), ivec3(x, y, s), p,
+            perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), shadow, p,
                                                             ls.toLight, ls.distance);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);

@@ -26,10 +26,8 @@ size_t shadowIndex(glm::ivec3 d, int light, glm::ivec3 c) { return static_cast<s
 
 // The 8 cells around lookup k, blended (fog_shadow.glsl blendShadowCells).
 shd::ShadowBlend blendShadowCells(const ShadowVolume& sv, int light, const shd::ShadowLookup& k) {
-    // The upper corner stays inside the volume: a zero weight makes its value irrelevant.
-    const glm::ivec3 hi = glm::min(k.cell + glm::ivec3(1), sv.dims - glm::ivec3(1));
     auto at = [&](int x, int y, int z) {
-        const glm::ivec3 c(x ? hi.x : k.cell.x, y ? hi.y : k.cell.y, z ? hi.z : k.cell.z);
+        const glm::ivec3 c(x ? k.upper.x : k.cell.x, y ? k.upper.y : k.cell.y, z ? k.upper.z : k.cell.z);
         return glm::vec3(sv.transmittance[shadowIndex(sv.dims, light, c)]);
     };
     return shd::shadowBlend(at(0, 0, 0), at(1, 0, 0), at(0, 1, 0), at(1, 1, 0), at(0, 0, 1), at(1, 0, 1),
@@ -64,11 +62,11 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
 }
 
 glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
-                                 int light, glm::ivec3 froxel, glm::vec3 p, glm::vec3 toLight, float distance) {
+                                 int light, const shd::ShadowLookup& k, glm::vec3 p, glm::vec3 toLight,
+                                 float distance) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
     if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
-    const shd::ShadowBlend b =
-        blendShadowCells(sv, light, shd::shadowLookup(froxel, glm::ivec3(frame.froxelDims), sv.reduction));
+    const shd::ShadowBlend b = blendShadowCells(sv, light, k);
     if (b.trusted) return b.transmittance;
     return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x);
 }

@@ -38,10 +38,12 @@ struct ShadowVolume {
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
                                  int threads);
 
-// The light pass's transmittance toward light `light` for froxel `froxel` (sample point p): the
-// volume's trilinear blend where its 8 cells agree, the exact closed form where they do not.
+// The light pass's transmittance toward light `light` for the froxel whose shd::shadowLookup is k
+// (sample point p): the volume's trilinear blend where its 8 cells agree, the exact closed form
+// where they do not.
 glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
-                                 int light, glm::ivec3 froxel, glm::vec3 p, glm::vec3 toLight, float distance);
+                                 int light, const shd::ShadowLookup& k, glm::vec3 p, glm::vec3 toLight,
+                                 float distance);
 
 // The same for a surface point p (the shadow ray's origin): the volume at p's froxel coordinates
 // inside the grid, the exact closed form outside it (past the froxel far) and at shadow edges.

@@ -253,7 +253,7 @@ float worstBlendError(const CompiledScene& cs, shd::FrameUniforms frame, int red
             for (int x = 0; x < dims.x; ++x) {
                 const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(x, y, z) + glm::vec3(frame.jitter), frame);
                 const shd::ShadowLookup k = shd::shadowLookup(glm::ivec3(x, y, z), dims, reduction);
-                const glm::ivec3 hi = glm::min(k.cell + glm::ivec3(1), sv.dims - glm::ivec3(1));
+                const glm::ivec3 hi = k.upper;
                 for (size_t li = 0; li < cs.lights.size(); ++li) {
                     auto at = [&](int cx, int cy, int cz) {
                         const size_t zz = li * static_cast<size_t>(sv.dims.z) + static_cast<size_t>(cz ? hi.z : k.cell.z);

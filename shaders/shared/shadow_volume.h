@@ -35,14 +35,20 @@ BRUME_FUNC int shadowVolumeIndex(ivec3 cells, int light, ivec3 c) {
     return ((light * cells.z + c.z) * cells.y + c.y) * cells.x + c.x;
 }
 
+// Where a point reads the volume; the same for every light, so computed once per froxel or surface
+// point (integer division is scalar on a CPU's SIMD lanes: lavapipe pays for each one).
 struct ShadowLookup {
-    ivec3 cell;    // lower corner; the upper corner is cell + 1 (within shadowVolumeDims)
-    vec3 weights;  // trilinear weights toward the upper corner, in [0, 1)
+    ivec3 cells;   // shadowVolumeDims
+    ivec3 cell;    // lower corner
+    ivec3 upper;   // upper corner: cell + 1, clamped to the volume (its weight is then 0)
+    vec3 weights;  // trilinear weights toward the upper corner, in [0, 1]
 };
 
 BRUME_FUNC ShadowLookup shadowLookup(ivec3 froxel, ivec3 froxelDims, int r) {
     ShadowLookup k;
+    k.cells = shadowVolumeDims(froxelDims, r);
     k.cell = froxel / r;
+    k.upper = min(k.cell + ivec3(1), k.cells - ivec3(1));
     ivec3 lo = k.cell * r;
     ivec3 hi = min(lo + ivec3(r), froxelDims - ivec3(1));
     vec3 span = vec3(max(hi - lo, ivec3(1)));
@@ -74,7 +80,9 @@ BRUME_FUNC SurfaceShadowLookup shadowLookupAt(vec3 coord, FrameUniforms f, int r
     SurfaceShadowLookup s;
     s.inside = all(greaterThanEqual(u, vec3(0.0f))) && all(lessThanEqual(u, vec3(dims - ivec3(1))));
     ivec3 base = min(ivec3(max(u, vec3(0.0f))), dims - ivec3(1));
+    s.k.cells = shadowVolumeDims(dims, r);
     s.k.cell = base / r;
+    s.k.upper = min(s.k.cell + ivec3(1), s.k.cells - ivec3(1));
     ivec3 lo = s.k.cell * r;
     ivec3 hi = min(lo + ivec3(r), dims - ivec3(1));
     s.k.weights = clamp((u - vec3(lo)) / vec3(max(hi - lo, ivec3(1))), vec3(0.0f), vec3(1.0f));
