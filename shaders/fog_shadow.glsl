@@ -7,33 +7,32 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
     return exp(-tau);
 }
 
-vec3 shadowCell(int light, ivec3 cells, ivec3 c) {
-    return shadowTransmittance[shadowVolumeIndex(cells, light, c)].rgb;
+vec3 shadowCell(int light, ShadowLookup k, int x, int y, int z) {
+    ivec3 c = ivec3(x != 0 ? k.upper.x : k.cell.x, y != 0 ? k.upper.y : k.cell.y, z != 0 ? k.upper.z : k.cell.z);
+    return shadowTransmittance[shadowVolumeIndex(k.cells, light, c)].rgb;
 }
 
+// The 8 cells around lookup k (core: blendShadowCells).
 ShadowBlend blendShadowCells(int light, ShadowLookup k) {
-    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadows.y);
-    ivec3 lo = k.cell;
-    ivec3 hi = min(k.cell + ivec3(1), cells - ivec3(1));
-    return shadowBlend(shadowCell(light, cells, lo), shadowCell(light, cells, ivec3(hi.x, lo.y, lo.z)),
-                       shadowCell(light, cells, ivec3(lo.x, hi.y, lo.z)), shadowCell(light, cells, ivec3(hi.x, hi.y, lo.z)),
-                       shadowCell(light, cells, ivec3(lo.x, lo.y, hi.z)), shadowCell(light, cells, ivec3(hi.x, lo.y, hi.z)),
-                       shadowCell(light, cells, ivec3(lo.x, hi.y, hi.z)), shadowCell(light, cells, hi), k.weights);
+    return shadowBlend(shadowCell(light, k, 0, 0, 0), shadowCell(light, k, 1, 0, 0), shadowCell(light, k, 0, 1, 0),
+                       shadowCell(light, k, 1, 1, 0), shadowCell(light, k, 0, 0, 1), shadowCell(light, k, 1, 0, 1),
+                       shadowCell(light, k, 0, 1, 1), shadowCell(light, k, 1, 1, 1), k.weights);
 }
 
 // The light pass's transmittance (core: froxelFogTransmittance): the shadow volume's trilinear
 // blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
-vec3 froxelFogTransmittance(int light, ivec3 froxel, vec3 p, vec3 toLight, float distance) {
+// k: shadowLookup of the froxel, computed once for all lights.
+vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
-    ShadowBlend b = blendShadowCells(light, shadowLookup(froxel, frame.froxelDims.xyz, frame.shadows.y));
+    ShadowBlend b = blendShadowCells(light, k);
     if (b.trusted) return b.transmittance;
     return lightFogTransmittance(lights[light], p, toLight, distance);
 }
 
 // Surfaces (core: surfaceFogTransmittance): the volume inside the grid, exact outside and at edges.
-vec3 surfaceFogTransmittance(int light, vec3 p, vec3 toLight, float distance) {
+// s: shadowLookupAt of p, computed once for all lights.
+vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
-    SurfaceShadowLookup s = shadowLookupAt(froxelCoordFromWorld(p, frame), frame, frame.shadows.y);
     if (s.inside) {
         ShadowBlend b = blendShadowCells(light, s.k);
         if (b.trusted) return b.transmittance;

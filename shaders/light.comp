@@ -24,12 +24,13 @@ void main() {
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
+    ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadows.y);
     for (int i = 0; i < frame.counts.w; ++i) {
         LightSample ls = evalLight(lights[i], p);
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
-        perSigmaS += inScatter * froxelFogTransmittance(i, id, p, ls.toLight, ls.distance);
+        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance);
     }
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));
