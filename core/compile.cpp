@@ -106,8 +106,9 @@ shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
 
 shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
-    for (int piece = 0; piece < shd::DISTANT_SHADOW_PIECES; ++piece) {
-        const glm::vec2 b = shd::distantShadowPiece(s0, s1, piece);
+    const int pieces = shd::distantShadowPieceCount(s0, s1);
+    for (int piece = 0; piece < pieces; ++piece) {
+        const glm::vec2 b = shd::distantShadowPiece(s0, s1, piece, pieces);
         const glm::vec3 middle = cs.cameraPosition + dir * std::sqrt(b.x * b.y);
         shd::DistantSegment seg = shd::emptyDistantSegment();
         for (const shd::VolumeData& v : cs.volumes) {

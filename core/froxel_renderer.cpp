@@ -46,7 +46,7 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
 
 // Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
 // light + ambient) + emission. Returns how many froxels of the row were lit.
-size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
+size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& v, int y, int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
         const size_t i = froxelIndex(v.dims, x, y, s);
@@ -62,10 +62,15 @@ size_t lightRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
         const vec3 viewDir = glm::normalize(p - vec3(v.frame.cameraPosition));
         const float g = v.mediaScatteringG[i].w;
         vec3 perSigmaS = vec3(v.frame.ambient);
-        for (const shd::LightData& l : cs.lights) {
+        const shd::ShadowLookup shadow = shd::shadowLookup(ivec3(x, y, s), v.dims, sv.reduction);
+        for (size_t li = 0; li < cs.lights.size(); ++li) {
+            const shd::LightData& l = cs.lights[li];
             const shd::LightSample ls = shd::evalLight(l, p);
-            perSigmaS += shd::inScatterPerSigmaS(l, ls, viewDir, g) *
-                         lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, v.frame.shadows.x);
+            const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
+            // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
+            if (inScatter == vec3(0.0f)) continue;
+            perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), shadow, p,
+                                                            ls.toLight, ls.distance);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);
@@ -112,8 +117,8 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
 }
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
-void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const FroxelVolumes& v, Image& img,
-                  int y) {
+void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const FroxelVolumes& v,
+                  Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -127,8 +132,7 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Fr
         if (hit.hit()) {
             // The fog's shadow on the surface, as the GPU's geometry pass computes it.
             const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
-                return lightFogTransmittance(cs, cs.lights[static_cast<size_t>(i)], from, toLight, dist,
-                                             v.frame.shadows.x);
+                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist);
             };
             background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
@@ -166,7 +170,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     const TemporalFrame t = beginTemporalFrame(history.state, scene, sceneKey, request.history);
     FroxelVolumes& v = result.volumes;
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
-    frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
+    applyShadowSettings(frame, request);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 
@@ -179,10 +183,12 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(rows, threads, [&](int r) { voxelizeRow(cs, v, r % v.dims.y, r / v.dims.y); }, report);
     progress.finishedPass(rows);
 
+    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
+
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
     parallelFor(rows, threads,
-                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, v, r % v.dims.y, r / v.dims.y); },
+                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, v, r % v.dims.y, r / v.dims.y); },
                 report);
     progress.finishedPass(rows);
     for (size_t lit : litPerRow) v.litFroxels += lit;
@@ -195,7 +201,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     progress.finishedPass(columns);
 
     const GeometrySet geometry(scene.geometry);
-    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, v, result.image, y); }, report);
+    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, v, result.image, y); }, report);
     return result;
 }
 

@@ -25,6 +25,7 @@ struct RenderRequest {
     int frames = 1;        // froxel renderers: frames rendered (static camera); the last is returned
     HistoryMode history = HistoryMode::Restart;  // froxel renderers: keep the previous call's history?
     int threads = 0;       // 0 = every core
+    int shadowReduction = 0;  // fog transmittance volume reduction (core/shadows.h); 0 = the quality's
     ProgressFn progress;   // optional
 };
 

@@ -2,10 +2,13 @@
 // forms of shaders/shared/shadows.h (the GPU's light and geometry shaders run the same loop).
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "compile.h"
 #include "quality.h"
+#include "render.h"
 
 namespace brume {
 
@@ -18,5 +21,38 @@ bool localLightFogShadows(Quality q);
 // light) through every analytic volume except depth fog; 1 for a light shd::fogShadowsLight skips.
 glm::vec3 lightFogTransmittance(const CompiledScene& cs, const shd::LightData& l, glm::vec3 p, glm::vec3 toLight,
                                 float distance, int localLightsToo);
+
+// Transmittance volume reduction r (shaders/shared/shadow_volume.h) at this quality: the light pass
+// evaluates 1/r^3 of the closed forms, plus the froxels at shadow edges. Measured trade in
+// docs/shadows.md.
+int shadowVolumeReduction(Quality q);
+
+// Sets frame.shadows (local-light fog shadows, transmittance-volume reduction) for a request:
+// the one place both froxel renderers take these from.
+void applyShadowSettings(shd::FrameUniforms& frame, const RenderRequest& request);
+
+// Each shadowing light's transmittance on the reduced grid, light after light: index
+// ((light * d.z + z) * d.y + y) * d.x + x, d = shd::shadowVolumeDims (the GPU's image stacks the
+// lights along z the same way). Lights shd::fogShadowsLight skips hold 1.
+struct ShadowVolume {
+    glm::ivec3 dims{0};
+    int reduction = 1;
+    std::vector<glm::vec4> transmittance;  // rgb transmittance, a unused
+};
+
+ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
+                                 int threads);
+
+// The light pass's transmittance toward light `light` for the froxel whose shd::shadowLookup is k
+// (sample point p): the volume's trilinear blend where its 8 cells agree, the exact closed form
+// where they do not.
+glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
+                                 int light, const shd::ShadowLookup& k, glm::vec3 p, glm::vec3 toLight,
+                                 float distance);
+
+// The same for a surface point p (the shadow ray's origin): the volume at p's froxel coordinates
+// inside the grid, the exact closed form outside it (past the froxel far) and at shadow edges.
+glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
+                                  int light, glm::vec3 p, glm::vec3 toLight, float distance);
 
 }  // namespace brume

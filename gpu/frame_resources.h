@@ -39,6 +39,10 @@ struct FrameResources {
     std::array<HistoryImages, 2> history;
     bool historyUndefined = true;
 
+    // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims cells per light.
+    glm::ivec3 shadowExtent{0};  // cells x, y and z * lights: the shadow volume pass's dispatch
+    Buffer shadowTransmittance;  // vec4[], at least one entry
+
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage
     GpuImage sceneDepth;   // r32f view depth, colour attachment 1 and storage

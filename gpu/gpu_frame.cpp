@@ -4,6 +4,7 @@
 
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/brume.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
@@ -129,7 +130,7 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 }
 
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
-                                         size_t vertexBytes) {
+                                         size_t vertexBytes, int shadowReduction) {
     bool dirty = false;
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     BRUME_TRY(ensureBuffer(res.frame, sizeof(shd::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Memory::Upload,
@@ -148,6 +149,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            Memory::Upload, "geometry vertices", vertexDirty));
     BRUME_TRY(ensureFroxelImages(dims, dirty));
     BRUME_TRY(ensureScreenImages(size, dirty));
+    const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
+    res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
+    const size_t entries = static_cast<size_t>(cells.x) * static_cast<size_t>(cells.y) * static_cast<size_t>(cells.z) *
+                           std::max<size_t>(cs.lights.size(), 1);
+    BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
+                           "shadow transmittance", dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }
@@ -178,6 +185,13 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     // The light pass counts into the cleared counters with atomics.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    // First: the light pass and the surfaces of the geometry pass read it.
+    timer.begin(cmd, "shadow volume");
+    recordShadowVolume(cmd, shadowVolume, bindings, res.shadowExtent);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    timer.end(cmd);
 
     timer.begin(cmd, "geometry");
     geometry.record(cmd, bindings, res, vertexCount, ambient, cameraFar);

@@ -50,9 +50,9 @@ Result<void> GpuRenderer::State::createPasses() {
     Result<GeometryPass> g = GeometryPass::create(*device, layout);
     if (!g) return g.error();
     geometry = std::move(g.value());
-    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&light, &createLightPass},
-                                std::pair{&temporal, &createTemporalPass}, std::pair{&integrate, &createIntegratePass},
-                                std::pair{&composite, &createCompositePass}}) {
+    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&shadowVolume, &createShadowVolumePass},
+                                std::pair{&light, &createLightPass}, std::pair{&temporal, &createTemporalPass},
+                                std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
         Result<ComputePass> p = create(*device, layout);
         if (!p) return p.error();
         *pass = std::move(p.value());
@@ -115,12 +115,13 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const CompiledScene cs = compileScene(scene);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
+    applyShadowSettings(frame, request);
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
     const std::vector<GeometryVertex> vertices = tessellateGeometry(scene.geometry, frame);
 
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex)));
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
@@ -138,7 +139,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         mode = HistoryMode::Continue;
         frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
         frame.jitter.w = t.useHistory ? t.historyWeight : 0.0f;
-        frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;  // as renderFroxelCpu
+        applyShadowSettings(frame, request);  // as renderFroxelCpu
         std::memcpy(r.frame.mapped, &frame, sizeof(frame));
         std::memcpy(r.previousFrame.mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);

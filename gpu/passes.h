@@ -31,7 +31,12 @@ private:
 Result<ComputePass> createVoxelizePass(const Device& device, VkPipelineLayout layout);
 void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
-// Light. in: frame, lights, media*. out: source, counters.
+// Shadow volume. in: frame, volumes, lights. out: shadowTransmittance (each shadowing light's fog
+// transmittance on the reduced grid of shaders/shared/shadow_volume.h).
+Result<ComputePass> createShadowVolumePass(const Device& device, VkPipelineLayout layout);
+void recordShadowVolume(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 extent);
+
+// Light. in: frame, lights, media*, shadowTransmittance. out: source, counters.
 Result<ComputePass> createLightPass(const Device& device, VkPipelineLayout layout);
 void recordLight(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 

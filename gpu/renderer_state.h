@@ -27,7 +27,7 @@ struct GpuRenderer::State {
     FenceOwner fence;
     DescriptorBindings bindings;
     GeometryPass geometry;
-    ComputePass voxelize, light, integrate, composite;
+    ComputePass voxelize, shadowVolume, light, integrate, composite;
     ComputePass temporal;
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
@@ -41,7 +41,8 @@ struct GpuRenderer::State {
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
-    Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes);
+    Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
+                         int shadowReduction);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                      int historyWriteIndex);
     void recordReadback(bool readBackVolumes);

@@ -35,8 +35,9 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
 // directional lights (times the fog transmittance toward them, per piece) and the ambient.
 Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
-    for (int piece = 0; piece < DISTANT_SHADOW_PIECES; ++piece) {
-        vec2 b = distantShadowPiece(s0, s1, piece);
+    int pieces = distantShadowPieceCount(s0, s1);
+    for (int piece = 0; piece < pieces; ++piece) {
+        vec2 b = distantShadowPiece(s0, s1, piece, pieces);
         vec3 middle = frame.cameraPosition.xyz + dir * sqrt(b.x * b.y);
         DistantSegment seg = emptyDistantSegment();
         for (int i = 0; i < frame.counts.z; ++i) {

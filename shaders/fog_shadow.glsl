@@ -6,3 +6,36 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
     for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumes[i], p, toLight, distance);
     return exp(-tau);
 }
+
+vec3 shadowCell(int light, ShadowLookup k, int x, int y, int z) {
+    ivec3 c = ivec3(x != 0 ? k.upper.x : k.cell.x, y != 0 ? k.upper.y : k.cell.y, z != 0 ? k.upper.z : k.cell.z);
+    return shadowTransmittance[shadowVolumeIndex(k.cells, light, c)].rgb;
+}
+
+// The 8 cells around lookup k (core: blendShadowCells).
+ShadowBlend blendShadowCells(int light, ShadowLookup k) {
+    return shadowBlend(shadowCell(light, k, 0, 0, 0), shadowCell(light, k, 1, 0, 0), shadowCell(light, k, 0, 1, 0),
+                       shadowCell(light, k, 1, 1, 0), shadowCell(light, k, 0, 0, 1), shadowCell(light, k, 1, 0, 1),
+                       shadowCell(light, k, 0, 1, 1), shadowCell(light, k, 1, 1, 1), k.weights);
+}
+
+// The light pass's transmittance (core: froxelFogTransmittance): the shadow volume's trilinear
+// blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
+// k: shadowLookup of the froxel, computed once for all lights.
+vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
+    if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    ShadowBlend b = blendShadowCells(light, k);
+    if (b.trusted) return b.transmittance;
+    return lightFogTransmittance(lights[light], p, toLight, distance);
+}
+
+// Surfaces (core: surfaceFogTransmittance): the volume inside the grid, exact outside and at edges.
+// s: shadowLookupAt of p, computed once for all lights.
+vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
+    if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    if (s.inside) {
+        ShadowBlend b = blendShadowCells(light, s.k);
+        if (b.trusted) return b.transmittance;
+    }
+    return lightFogTransmittance(lights[light], p, toLight, distance);
+}

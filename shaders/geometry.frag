@@ -19,14 +19,15 @@ void main() {
     // Two-sided like the CPU's ray queries: the normal faces the camera.
     if (dot(n, frame.cameraPosition.xyz - worldPos) < 0.0f) n = -n;
     vec3 radiance = emission + albedo * frame.ambient.rgb;
+    // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
+    vec3 m = abs(worldPos);
+    vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
+    SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadows.y);
     for (int i = 0; i < frame.counts.w; ++i) {
         LightSample ls = evalLight(lights[i], worldPos);
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
-        // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
-        vec3 m = abs(worldPos);
-        vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
-        radiance += direct * lightFogTransmittance(lights[i], origin, ls.toLight, ls.distance);
+        radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

@@ -1,4 +1,5 @@
-// Pass 2: source S = sigma_s (lights' in-scattering x fog transmittance toward the light + ambient)
+// Pass 2: source S = sigma_s (lights' in-scattering x fog transmittance toward the light, read from
+// the shadow volume pass's output (fog_shadow.glsl froxelFogTransmittance), + ambient)
 // + emission (core: lightRow). Froxels with sigma_t = 0 skip lighting and hold S = emission: nothing scatters
 // where nothing extinguishes, but a purely emissive medium still glows.
 #version 450
@@ -23,10 +24,13 @@ void main() {
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
+    ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadows.y);
     for (int i = 0; i < frame.counts.w; ++i) {
         LightSample ls = evalLight(lights[i], p);
-        perSigmaS += inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a) *
-                     lightFogTransmittance(lights[i], p, ls.toLight, ls.distance);
+        vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
+        // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
+        if (inScatter == vec3(0.0f)) continue;
+        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance);
     }
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));

@@ -27,7 +27,11 @@ BRUME_CONST int BINDING_HISTORY_SOURCE_IN = 14;       // image3D rgba32f: resolv
 BRUME_CONST int BINDING_HISTORY_EXTINCTION_IN = 15;   // image3D rgba32f: resolved sigma_t, previous frame
 BRUME_CONST int BINDING_HISTORY_SOURCE_OUT = 16;      // image3D rgba32f: resolved S, this frame
 BRUME_CONST int BINDING_HISTORY_EXTINCTION_OUT = 17;  // image3D rgba32f: resolved sigma_t, this frame
-BRUME_CONST int BINDING_COUNT = 18;
+BRUME_CONST int BINDING_SHADOW_TRANSMITTANCE = 18;  // storage vec4[]: fog transmittance volume
+                                                     // (shadow_volume.h shadowVolumeIndex); a buffer, not an
+                                                     // image: lavapipe's imageLoad is ~3x dearer, and the
+                                                     // geometry pass may read it
+BRUME_CONST int BINDING_COUNT = 19;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {

@@ -10,5 +10,6 @@
 #include "temporal.h"
 #include "distant.h"
 #include "shadows.h"
+#include "shadow_volume.h"
 #include "tonemap.h"
 #endif

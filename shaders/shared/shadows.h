@@ -123,17 +123,27 @@ BRUME_FUNC bool fogShadowsLight(LightData l, int localLightsToo) {
     return l.kind.x == LIGHT_DIRECTIONAL || localLightsToo != 0;
 }
 
-// Past the froxel far (distant.h) the camera ray is cut into this many pieces, geometric in ray
-// distance, each lit by the directional lights times the fog transmittance toward them at the
-// piece's (geometric) middle: the closed form needs a source that is constant along a piece.
+// Past the froxel far (distant.h) the camera ray is cut into pieces, geometric in ray distance,
+// each lit by the directional lights times the fog transmittance toward them at the piece's
+// (geometric) middle: the closed form needs a source that is constant along a piece. A piece spans
+// a distance ratio of at most DISTANT_SHADOW_PIECE_RATIO, and there are at most
+// DISTANT_SHADOW_PIECES: a sky pixel just past the froxel far (96 -> 100 m) needs one piece, not 8,
+// which was most of the composite's cost (docs/shadows.md, "Cost").
 BRUME_CONST int DISTANT_SHADOW_PIECES = 8;
+BRUME_CONST float DISTANT_SHADOW_PIECE_RATIO = 1.5f;
 
-// Ray-distance bounds [x, y] of piece i of [s0, s1] (0 < s0 < s1); the last piece ends at s1 exactly.
-BRUME_FUNC vec2 distantShadowPiece(float s0, float s1, int i) {
+// How many pieces [s0, s1] (0 < s0 < s1) is cut into: 1..DISTANT_SHADOW_PIECES.
+BRUME_FUNC int distantShadowPieceCount(float s0, float s1) {
+    float n = ceil(log(s1 / s0) / log(DISTANT_SHADOW_PIECE_RATIO));
+    return int(clamp(n, 1.0f, float(DISTANT_SHADOW_PIECES)));
+}
+
+// Ray-distance bounds [x, y] of piece i of n of [s0, s1]; the last piece ends at s1 exactly.
+BRUME_FUNC vec2 distantShadowPiece(float s0, float s1, int i, int n) {
     float ratio = s1 / s0;
-    float n = float(DISTANT_SHADOW_PIECES);
-    float a = i == 0 ? s0 : s0 * pow(ratio, float(i) / n);
-    float b = i + 1 == DISTANT_SHADOW_PIECES ? s1 : s0 * pow(ratio, float(i + 1) / n);
+    float fn = float(n);
+    float a = i == 0 ? s0 : s0 * pow(ratio, float(i) / fn);
+    float b = i + 1 == n ? s1 : s0 * pow(ratio, float(i + 1) / fn);
     return vec2(a, b);
 }
 

@@ -59,23 +59,6 @@ BRUME_FUNC vec3 temporalJitter(int frameIndex) {
     return fract(vec3(0.5f) + h);
 }
 
-// Continuous froxel coordinate (x, y in tiles, z in slices) of a world position in frame f: the
-// inverse of worldFromFroxelCoord. w = 1 inside the grid, 0 outside (behind the camera, outside the
-// tiles, past the froxel far). Depths in front of the froxel near belong to slice 0.
-BRUME_FUNC vec4 froxelCoordFromWorld(vec3 p, FrameUniforms f) {
-    vec3 v = vec3(f.viewFromWorld * vec4(p, 1.0f));
-    float z = -v.z;
-    if (!(z > 0.0f)) return vec4(0.0f);
-    float ndcX = v.x / (z * f.projection.x);
-    float ndcY = v.y / (z * f.projection.y);
-    vec2 pixel = vec2((ndcX + 1.0f) * 0.5f * float(f.counts.x), (1.0f - ndcY) * 0.5f * float(f.counts.y));
-    vec2 tile = pixel / float(f.froxelDims.w);
-    float slice = sliceTFromViewDepth(z, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z) * float(f.froxelDims.z);
-    bool inside = tile.x >= 0.0f && tile.y >= 0.0f && tile.x <= float(f.froxelDims.x) &&
-                  tile.y <= float(f.froxelDims.y) && z <= f.froxelRange.y;
-    return vec4(tile, slice, inside ? 1.0f : 0.0f);
-}
-
 // Where froxel `froxel` of frame `cur` reads last frame's history, and with what weight (steps 1-4
 // and 6 of the rule above). Trilinear between the corners lo and hi with fractions `fractions`.
 struct HistoryTaps {

@@ -69,7 +69,8 @@ struct FrameUniforms {
     vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre);
                           // w: GPU temporal pass only: this frame's history weight (0 = no history)
     ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
-                          // is always on; shadows.h); yzw unused
+                          // is always on; shadows.h); y: transmittance volume reduction r >= 1
+                          // (shadow_volume.h); zw unused
 };
 
 BRUME_NAMESPACE_END
