@@ -63,9 +63,10 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& 
         const float g = v.mediaScatteringG[i].w;
         vec3 perSigmaS = vec3(v.frame.ambient);
         const shd::ShadowLookup shadow = shd::shadowLookup(ivec3(x, y, s), v.dims, sv.reduction);
+        const float nearest = shd::FROXEL_LIGHT_CLAMP * shd::froxelRadius(s, v.frame);
         for (size_t li = 0; li < cs.lights.size(); ++li) {
             const shd::LightData& l = cs.lights[li];
-            const shd::LightSample ls = shd::evalLight(l, p);
+            const shd::LightSample ls = shd::evalLightNear(l, p, nearest);
             const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;

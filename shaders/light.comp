@@ -25,8 +25,9 @@ void main() {
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
     ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadows.y);
+    float nearest = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
     for (int i = 0; i < frame.counts.w; ++i) {
-        LightSample ls = evalLight(lights[i], p);
+        LightSample ls = evalLightNear(lights[i], p, nearest);
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;

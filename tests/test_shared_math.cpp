@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/compile.h"
+#include "core/quality.h"
 #include "shaders/shared/brume.h"
 
 using namespace brume;
@@ -357,4 +358,31 @@ TEST(Distant, ExtremesStayFinite) {
             EXPECT_LE(len, s1 * 1.0001f);
         }
     }
+}
+
+TEST(Lights, FroxelScaleClampBoundsTheInverseSquare) {
+    Light point = makeLight(LightType::Point);
+    point.position = glm::vec3(0.0f);
+    point.intensity = 2.0f;
+    const shd::LightData l = compileLight(point);
+    // Closer than the clamp: the clamp's inverse square; farther: unchanged.
+    EXPECT_NEAR(shd::evalLightNear(l, glm::vec3(0.01f, 0, 0), 0.5f).irradiance.x, 2.0f / 0.25f, 1e-5f);
+    EXPECT_NEAR(shd::evalLightNear(l, glm::vec3(3.0f, 0, 0), 0.5f).irradiance.x, 2.0f / 9.0f, 1e-6f);
+    EXPECT_EQ(shd::evalLightNear(l, glm::vec3(0.3f, 0, 0), 0.0f).irradiance.x,
+              shd::evalLight(l, glm::vec3(0.3f, 0, 0)).irradiance.x);
+
+    // Froxel radii grow with depth and are of the size of a tile footprint and a slice.
+    Scene scene;
+    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::Medium);
+    const shd::FrameUniforms f = makeFrameUniforms(scene, compileScene(scene), 640, 360, fs);
+    float prev = 0.0f;
+    for (int s = 0; s < fs.slices; ++s) {
+        const float r = shd::froxelRadius(s, f);
+        EXPECT_GT(r, prev) << s;
+        prev = r;
+    }
+    const float zFar = fs.far, zPrev = shd::viewDepthFromSliceT(float(fs.slices - 1) / float(fs.slices), fs.near, fs.far, fs.distribution);
+    const float width = 2.0f * f.projection.x * 0.5f * (zFar + zPrev) * float(fs.tile_px) / 640.0f;
+    EXPECT_GT(prev, 0.5f * std::max(width, zFar - zPrev));
+    EXPECT_LT(prev, 0.5f * std::sqrt(2.0f * width * width + (zFar - zPrev) * (zFar - zPrev)) * 1.001f);
 }

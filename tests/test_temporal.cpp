@@ -394,8 +394,9 @@ double worstFlicker(const Scene& scene) {
 // than 1% (relative mean abs), although each samples other points in every froxel; without the
 // history (weight 0) the jittered frames alone differ by over ten times that.
 // A point light inside the fog is the hard case: its 1/r^2 peak is sampled by whichever froxel
-// sample comes closest, so single frames differ by ~30%; the history divides that by ~10, not
-// enough for 1% (measured, not hidden: the cure is in the light pass, see docs/temporal.md).
+// sample comes closest. The light pass evaluates it no closer than half a froxel radius
+// (FROXEL_LIGHT_CLAMP), which took the blended flicker from 2.6% to 1.3% (13% unblended); the
+// 1% bound is not met there (measured, not hidden: docs/temporal.md).
 TEST(TemporalFlicker, StaticViewChangesLessThanOnePercentPerFrame) {
     Scene scene = conesScene();
     const double flicker = worstFlicker(scene);
@@ -415,6 +416,7 @@ TEST(TemporalFlicker, StaticViewChangesLessThanOnePercentPerFrame) {
     std::printf("[flicker] point light inside the fog: %.3f%% with history, %.3f%% jitter alone\n", 100.0 * hard,
                 100.0 * hardRaw);
     EXPECT_LT(hard, 0.15 * hardRaw);
+    EXPECT_LT(hard, 0.02);  // 0.026 without the froxel-scale clamp
 }
 
 // A camera panning left by 1.5 degrees per frame (about half a froxel column at the edges): froxels

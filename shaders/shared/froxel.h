@@ -59,6 +59,19 @@ BRUME_FUNC vec4 froxelCoordFromWorld(vec3 p, FrameUniforms f) {
     return vec4(tile, slice, inside ? 1.0f : 0.0f);
 }
 
+// Radius of froxel slice s's cells [m]: half the diagonal of its tile-by-tile footprint at the slice's
+// middle depth and its thickness. The scale below which a froxel cannot resolve detail.
+BRUME_FUNC float froxelRadius(int s, FrameUniforms f) {
+    float n = float(f.froxelDims.z);
+    float z0 = viewDepthFromSliceT(float(s) / n, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
+    float z1 = viewDepthFromSliceT(float(s + 1) / n, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
+    float zc = 0.5f * (z0 + z1);
+    float tile = float(f.froxelDims.w);
+    float w = 2.0f * f.projection.x * zc * tile / float(f.counts.x);
+    float h = 2.0f * f.projection.y * zc * tile / float(f.counts.y);
+    return 0.5f * sqrt(w * w + h * h + (z1 - z0) * (z1 - z0));
+}
+
 // Length of the camera ray inside slice s of the pixel column through `pixel` [m].
 BRUME_FUNC float sliceRayLength(int s, vec2 pixel, FrameUniforms f) {
     float n = float(f.froxelDims.z);
