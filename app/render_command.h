@@ -79,6 +79,7 @@ struct RenderOptions {
     int frames = 0;
     float exposure = 0.0f;
     int threads = 0;
+    int vdbMemoryMb = 0;
     bool reference = false;
     bool cpu = false;
     std::string device;     // --device, GPU renderer

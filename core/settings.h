@@ -121,6 +121,7 @@ inline constexpr std::array kAll = {
 // clang-format off
 inline constexpr Setting cli_exposure     {"--exposure", K::Number, "", 1e-6, 1e6, {1}, "", "Multiplies radiance before the PNG tone curve; EXR is written linear and unscaled."};
 inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames of temporal accumulation (froxel renderer; the reference ignores it)."};
+inline constexpr Setting cli_vdb_memory   {"--vdb-memory-mb", K::Integer, "MiB", 1, 1048576, {4096}, "", "Largest OpenVDB grid accepted, in memory and as NanoVDB (GPU); bigger grids are refused."};
 inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};
 // clang-format on
 
