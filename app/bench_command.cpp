@@ -1,4 +1,5 @@
 #include "bench_command.h"
+#include "vdb_command.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -42,6 +43,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
 CommandResult runBench(const BenchOptions& o) {
     Result<Scene> scene = loadSceneFile(o.scenePath);
     if (!scene) return badInput(scene.error().message);
+    if (Result<void> g = loadGridsPrintingWarnings(scene.value(), o.scenePath, settings::cli_vdb_memory.i()); !g)
+        return badInput(g.error().message);
     RenderRequest request = requestFromScene(scene.value());
     if (o.widthOption->count() > 0) request.width = o.width;
     if (o.heightOption->count() > 0) request.height = o.height;

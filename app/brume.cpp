@@ -10,6 +10,7 @@
 #include "command.h"
 #include "info_commands.h"
 #include "render_command.h"
+#include "vdb_command.h"
 
 namespace {
 
@@ -44,10 +45,12 @@ int run(int argc, char** argv) {
     CLI::App* settingsCmd = addSettingsCommand(app, settings);
     BenchOptions bench;
     CLI::App* benchCmd = addBenchCommand(app, bench);
+    InfoOptions info;
+    CLI::App* infoCmd = addInfoCommand(app, info);
     // CLI11 would answer both with "A subcommand is required"; say what is expected instead.
-    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings or bench (see brume --help)."));
+    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench or info (see brume --help)."));
     if (argv[1][0] != '-' && !hasSubcommand(app, argv[1])) {
-        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings or bench."));
+        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench or info."));
     }
     try {
         app.parse(argc, argv);
@@ -61,7 +64,8 @@ int run(int argc, char** argv) {
     if (*validateCmd) return finish(runValidate(validate));
     if (*settingsCmd) return finish(runSettings(settings));
     if (*benchCmd) return finish(runBench(bench));
-    return finish(badInput("no command given; expected render, validate, settings or bench (see brume --help)."));
+    if (*infoCmd) return finish(runInfo(info));
+    return finish(badInput("no command given; expected render, validate, settings, bench or info (see brume --help)."));
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "info_commands.h"
+#include "vdb_command.h"
 
 #include <cstdio>
 #include <map>
@@ -31,6 +32,9 @@ static std::string countByKind(const std::vector<T>& items, const char* noun, co
 CommandResult runValidate(const ValidateOptions& o) {
     Result<Scene> scene = loadSceneFile(o.scenePath);
     if (!scene) return badInput(scene.error().message);
+    // A scene whose vdb file is unreadable would fail to render: validate reads the grids too.
+    if (Result<void> g = loadGridsPrintingWarnings(scene.value(), o.scenePath, settings::cli_vdb_memory.i()); !g)
+        return badInput(g.error().message);
     const Scene& s = scene.value();
     std::printf("%s: ok\n", o.scenePath.c_str());
     std::printf("  %dx%d px, quality %s; %s; %s; %s\n", s.render.width, s.render.height, toString(s.render.quality),

@@ -1,4 +1,5 @@
 #include "render_command.h"
+#include "vdb_command.h"
 
 #include <algorithm>
 #include <chrono>
@@ -150,6 +151,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--exposure", o.exposure, optionHelp(settings::cli_exposure));
     o.threads = settings::cli_threads.i();
     cmd->add_option("--threads", o.threads, optionHelp(settings::cli_threads));
+    o.vdbMemoryMb = settings::cli_vdb_memory.i();
+    cmd->add_option("--vdb-memory-mb", o.vdbMemoryMb, optionHelp(settings::cli_vdb_memory));
     return cmd;
 }
 
@@ -185,6 +188,7 @@ static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
     if (auto e = checkRange("--frames", o.frames, settings::cli_frames)) return e;
     if (auto e = checkRange("--orbit", o.orbit, settings::cli_orbit)) return e;
     if (auto e = checkRange("--exposure", o.exposure, settings::cli_exposure)) return e;
+    if (auto e = checkRange("--vdb-memory-mb", o.vdbMemoryMb, settings::cli_vdb_memory)) return e;
     if (auto e = checkRange("--threads", o.threads, settings::cli_threads)) return e;
     if (!o.statsPath.empty()) {
         const fs::path dir = fs::path(o.statsPath).parent_path().empty() ? fs::path(".") : fs::path(o.statsPath).parent_path();
@@ -229,6 +233,8 @@ CommandResult runRender(const RenderOptions& o) {
     if (auto e = checkOptions(o)) return *e;
     Result<Scene> scene = loadSceneFile(o.scenePath);
     if (!scene) return badInput(scene.error().message);
+    if (Result<void> g = loadGridsPrintingWarnings(scene.value(), o.scenePath, o.vdbMemoryMb); !g)
+        return badInput(g.error().message);
     const RendererKind kind =
         o.reference ? RendererKind::Reference : (o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu);
     RenderRequest request = requestFromOptions(scene.value(), o);

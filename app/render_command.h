@@ -81,6 +81,7 @@ struct RenderOptions {
     float orbit = 0.0f;  // --orbit DEGREES_PER_FRAME
     float exposure = 0.0f;
     int threads = 0;
+    int vdbMemoryMb = 0;
     bool reference = false;
     bool cpu = false;
     std::string device;     // --device, GPU renderer

@@ -28,6 +28,34 @@ static void boundsOfUnitCube(shd::VolumeData& d, const glm::mat4& worldFromLocal
     d.worldMax = glm::vec4(hi, 0.0f);
 }
 
+// index space -> grid space (the file's voxel transform) -> the volume's transform -> world.
+static void compileVdb(const Volume& v, shd::VolumeData& d) {
+    d.kind.x = shd::VOLUME_VDB;
+    d.params.x = v.density_scale;
+    if (!v.density || v.density->empty()) {
+        // Nothing to sample: bounds that contain no point.
+        d.worldMin = glm::vec4(BRUME_HUGE, BRUME_HUGE, BRUME_HUGE, 0.0f);
+        d.worldMax = glm::vec4(-BRUME_HUGE, -BRUME_HUGE, -BRUME_HUGE, 0.0f);
+        return;
+    }
+    d.kind.z = 1;
+    const glm::mat4 worldFromIndex = v.transform.worldFromLocal() * v.density->gridFromIndex();
+    d.localFromWorld = glm::inverse(worldFromIndex);
+    const glm::vec3 lo = v.density->indexMin(), hi = v.density->indexMax();
+    glm::vec3 wlo(BRUME_HUGE), whi(-BRUME_HUGE);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+        const glm::vec3 w = glm::vec3(worldFromIndex * glm::vec4(c, 1.0f));
+        wlo = glm::min(wlo, w);
+        whi = glm::max(whi, w);
+    }
+    d.worldMin = glm::vec4(wlo, 0.0f);
+    d.worldMax = glm::vec4(whi, 0.0f);
+    // The shortest world length of a voxel edge: the reference's step limit inside the grid.
+    d.params.y = std::min({glm::length(glm::vec3(worldFromIndex[0])), glm::length(glm::vec3(worldFromIndex[1])),
+                           glm::length(glm::vec3(worldFromIndex[2]))});
+}
+
 shd::VolumeData compileVolume(const Volume& v) {
     shd::VolumeData d{};
     d.localFromWorld = glm::mat4(1.0f);
@@ -60,11 +88,7 @@ shd::VolumeData compileVolume(const Volume& v) {
             d.params.x = v.visibility_distance;
             d.params.y = v.start_distance;
             break;
-        case VolumeType::Vdb:
-            d.kind.x = shd::VOLUME_VDB;
-            d.params.x = v.density_scale;
-            d.localFromWorld = v.transform.localFromWorld();
-            break;
+        case VolumeType::Vdb: compileVdb(v, d); break;
     }
     return d;
 }
@@ -90,16 +114,33 @@ CompiledScene compileScene(const Scene& scene) {
     CompiledScene cs;
     cs.ambient = scene.ambient;
     cs.cameraPosition = scene.camera.position;
-    for (const Volume& v : scene.volumes) cs.volumes.push_back(compileVolume(v));
+    size_t gridOffset = 0;
+    for (const Volume& v : scene.volumes) {
+        shd::VolumeData d = compileVolume(v);
+        const bool sampled = d.kind.z != 0;
+        if (sampled) {
+            d.kind.y = static_cast<int>(gridOffset);
+            gridOffset += v.density->size();
+        }
+        cs.volumes.push_back(d);
+        cs.grids.push_back(sampled ? v.density : nullptr);
+    }
     for (const Light& l : scene.lights) cs.lights.push_back(compileLight(l));
     return cs;
 }
 
+float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
+    const shd::VolumeData& v = cs.volumes[i];
+    if (v.kind.x != shd::VOLUME_VDB) return shd::analyticDensity(v, p, cs.cameraPosition);
+    if (!cs.grids[i]) return 0.0f;
+    return v.params.x * cs.grids[i]->sampleIndex(shd::vdbIndexPos(v, p));
+}
+
 shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
     shd::MediaSample m = shd::emptyMedia();
-    for (const shd::VolumeData& v : cs.volumes) {
-        if (!shd::insideBounds(v, p)) continue;
-        m = shd::addMedium(m, v, shd::analyticDensity(v, p, cs.cameraPosition));
+    for (size_t i = 0; i < cs.volumes.size(); ++i) {
+        if (!shd::insideBounds(cs.volumes[i], p)) continue;
+        m = shd::addMedium(m, cs.volumes[i], volumeDensity(cs, i, p));
     }
     return m;
 }

@@ -12,6 +12,9 @@ namespace brume {
 
 struct CompiledScene {
     std::vector<shd::VolumeData> volumes;  // analytic volumes (vdb volumes are kept, kind VOLUME_VDB)
+    // Per volume: the density grid of a vdb volume (null otherwise). The GPU uploads them back to back
+    // in this order; VolumeData.kind.y is each grid's byte offset there.
+    std::vector<DensityGridPtr> grids;
     std::vector<shd::LightData> lights;
     glm::vec3 ambient{0.0f};
     glm::vec3 cameraPosition{0.0f};
@@ -21,8 +24,10 @@ shd::VolumeData compileVolume(const Volume& v);
 shd::LightData compileLight(const Light& l);
 CompiledScene compileScene(const Scene& scene);
 
-// Sum of every volume's media at a world position (analytic volumes; VDB volumes contribute 0
-// until the VDB importer provides samplers).
+// Density of volume i at a world position, without bounds test: analytic or grid-sampled.
+float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 worldPos);
+
+// Sum of every volume's media at a world position (vdb volumes sample their grid).
 shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 worldPos);
 
 // Closed-form fog of the height and depth volumes along the camera ray [s0, s1] (origin = camera

@@ -116,14 +116,28 @@ double depthDensityIntegral(const shd::VolumeData& v, glm::vec3 camera, glm::dve
     return marchDensity(density, o, d, 0.0, length, n);
 }
 
-double volumeDensityIntegral(const CompiledScene& cs, const shd::VolumeData& v, glm::dvec3 o, glm::dvec3 d,
-                             double length) {
+// Grids: midpoint rule over the part of the ray inside the grid's bounds, a quarter voxel per step
+// (trilinear density is piecewise smooth at that scale), capped so no grid can hang a shadow ray.
+double vdbDensityIntegral(const CompiledScene& cs, size_t i, glm::dvec3 o, glm::dvec3 d, double length) {
+    const shd::VolumeData& v = cs.volumes[i];
+    if (!cs.grids[i]) return 0.0;
+    const Interval in = intersect(rayBoxInterval(o, d, glm::dvec3(v.worldMin), glm::dvec3(v.worldMax)), 0.0, length);
+    if (in.empty() || !(in.t1 > in.t0)) return 0.0;
+    const double step = 0.25 * static_cast<double>(v.params.y);
+    const int n = static_cast<int>(std::clamp(std::ceil((in.t1 - in.t0) / step), 1.0, 65536.0));
+    auto density = [&](glm::vec3 p) { return static_cast<double>(volumeDensity(cs, i, p)); };
+    return marchDensity(density, o, d, in.t0, in.t1, n);
+}
+
+double volumeDensityIntegral(const CompiledScene& cs, size_t i, glm::dvec3 o, glm::dvec3 d, double length) {
+    const shd::VolumeData& v = cs.volumes[i];
     switch (v.kind.x) {
         case shd::VOLUME_BOX: return boxDensityIntegral(v, o, d, length);
         case shd::VOLUME_HEIGHT_EXPONENTIAL:
         case shd::VOLUME_HEIGHT_LINEAR: return heightDensityIntegral(v, o, d, length);
         case shd::VOLUME_DEPTH: return depthDensityIntegral(v, cs.cameraPosition, o, d, length);
-        default: return 0.0;  // VDB volumes have no sampler yet
+        case shd::VOLUME_VDB: return vdbDensityIntegral(cs, i, o, d, length);
+        default: return 0.0;
     }
 }
 
@@ -185,12 +199,13 @@ double heightDensityIntegral(const shd::VolumeData& v, glm::dvec3 o, glm::dvec3 
 glm::vec3 fogTransmittance(const CompiledScene& cs, glm::vec3 from, glm::vec3 dir, float maxDist) {
     glm::dvec3 tau(0.0);
     const glm::dvec3 o(from), d(dir);
-    for (const shd::VolumeData& v : cs.volumes) {
+    for (size_t i = 0; i < cs.volumes.size(); ++i) {
+        const shd::VolumeData& v = cs.volumes[i];
         // Depth fog is aerial perspective: its density is measured from the camera and fills all
         // space, so as an occluder it would put out every light and move shadows with the camera.
         // It dims what the camera sees, never the light on its way to a point (docs/scene-format.md).
         if (v.kind.x == shd::VOLUME_DEPTH) continue;
-        const double integral = volumeDensityIntegral(cs, v, o, d, static_cast<double>(maxDist));
+        const double integral = volumeDensityIntegral(cs, i, o, d, static_cast<double>(maxDist));
         if (!(integral > 0.0)) continue;
         const glm::vec3 sigmaT = glm::vec3(v.sigmaS_g) + glm::vec3(v.sigmaA);
         for (int c = 0; c < 3; ++c)
@@ -262,14 +277,13 @@ private:
             if (!i.empty()) add(i.t0), add(i.t1);
         };
         for (const shd::VolumeData& v : cs_.volumes) {
-            if (v.kind.x == shd::VOLUME_VDB) continue;
             addInterval(rayBoxInterval(ray.origin, ray.dir, glm::dvec3(v.worldMin), glm::dvec3(v.worldMax)));
             if (v.kind.x == shd::VOLUME_BOX) {
                 addInterval(boxInterval(v, ray.origin, ray.dir, 0.5));
                 if (hasFade(v)) addInterval(boxInterval(v, ray.origin, ray.dir, innerHalf(v)));
             } else if (v.kind.x == shd::VOLUME_DEPTH) {
                 add(static_cast<double>(v.params.y));  // the ray starts at the camera: distance = t
-            } else if (ray.dir.y != 0.0) {
+            } else if (v.kind.x != shd::VOLUME_VDB && ray.dir.y != 0.0) {  // height fog
                 add((static_cast<double>(v.params.x) - ray.origin.y) / ray.dir.y);
                 if (v.kind.x == shd::VOLUME_HEIGHT_LINEAR)
                     add((static_cast<double>(v.params.x + v.params.y) - ray.origin.y) / ray.dir.y);
@@ -284,7 +298,7 @@ private:
     bool pieceHasMedia(const CameraRay& ray, double tMid) const {
         const glm::vec3 p(ray.origin + ray.dir * tMid);
         for (const shd::VolumeData& v : cs_.volumes) {
-            if (v.kind.x == shd::VOLUME_VDB || !shd::insideBounds(v, p)) continue;
+            if (!shd::insideBounds(v, p)) continue;
             if (v.kind.x != shd::VOLUME_BOX || shd::boxDensity(v, p) > 0.0f) return true;
         }
         return false;
@@ -376,6 +390,8 @@ private:
         if (v.kind.x == shd::VOLUME_HEIGHT_EXPONENTIAL && p.y > v.params.x && v.params.y > 0.0f)
             return 1.0 / (static_cast<double>(v.params.y) * std::max(std::abs(ray.dir.y), 1e-30));
         if (v.kind.x == shd::VOLUME_DEPTH) return static_cast<double>(v.params.x) / 3.0;
+        // Trilinear density changes over a voxel: a voxel edge is its scale (density_step of it per step).
+        if (v.kind.x == shd::VOLUME_VDB) return static_cast<double>(v.params.y);
         if (v.kind.x == shd::VOLUME_BOX && hasFade(v)) {
             const glm::vec3 q = glm::vec3(v.localFromWorld * glm::vec4(p, 1.0f));
             if (2.0f * std::max(std::abs(q.x), std::max(std::abs(q.y), std::abs(q.z))) < 1.0f - v.params.x) return kInf;

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "density_grid.h"
 #include "settings.h"
 
 namespace brume {
@@ -111,6 +112,9 @@ struct Volume {
     std::string file;                                          // vdb, as written in the scene
     std::string grid = "density";                              // vdb
     float density_scale = settings::volume_density_scale.f();  // vdb
+    // vdb: the grid read from `file` by io/vdb_import.h (loadSceneGrids); not serialized. Null until
+    // loaded: an unloaded vdb volume is empty.
+    DensityGridPtr density;
     Medium medium;
     bool operator==(const Volume&) const = default;
 };

@@ -124,6 +124,7 @@ inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, 
 inline constexpr Setting cli_orbit        {"--orbit", K::Number, "deg", -180, 180, {0}, "", "Camera path for --frames: frame n turns the camera by n times this about its target (axis: camera.up); 0 = static."};
 // brume-editor options.
 inline constexpr Setting editor_autosave_seconds {"--autosave-seconds", K::Number, "s", 0.1, 3600, {5}, "", "Longest time unsaved changes wait before the editor writes them to its recovery file."};
+inline constexpr Setting cli_vdb_memory   {"--vdb-memory-mb", K::Integer, "MiB", 1, 1048576, {4096}, "", "Largest OpenVDB grid accepted, in memory and as NanoVDB (GPU); bigger grids are refused."};
 inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};
 // clang-format on
 

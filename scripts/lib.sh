@@ -6,7 +6,7 @@ BRUME_BUILD="${BRUME_BUILD_DIR:-$BRUME_ROOT/build}"
 
 BRUME_PACKAGES=(
   cmake g++ pkg-config
-  libopenvdb-dev libnanovdb-dev
+  libopenvdb-dev libnanovdb-dev libboost-iostreams-dev
   libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev spirv-tools vulkan-validationlayers
   libglm-dev libimgui-dev libglfw3-dev libstb-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev

@@ -5,6 +5,7 @@
 #include "types.h"
 #include "froxel.h"
 #include "media.h"
+#include "vdb.h"
 #include "lighting.h"
 #include "integrate.h"
 #include "temporal.h"

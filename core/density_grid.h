@@ -1,0 +1,56 @@
+// A density grid in memory: one float NanoVDB grid in a 32-byte aligned buffer, sampled trilinearly
+// in index space. core/ knows nothing of OpenVDB: io/vdb_import.* reads the file and fills this.
+// NanoVDB (header-only, plain C++, no dependencies) is used here on purpose: the CPU renderers sample
+// the very bytes that the GPU uploads and reads with PNanoVDB, so the two cannot disagree on the data,
+// and the grid stays sparse on both sides (no dense copy anywhere).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace nanovdb {
+template <typename>
+class Grid;
+}
+
+namespace brume {
+
+class DensityGrid {
+public:
+    // bytes: a NanoVDB buffer holding one float grid (nanovdb::NanoGrid<float>). Values must already be
+    // finite and >= 0 (the importer sanitizes them).
+    explicit DensityGrid(const void* bytes, size_t size);
+
+    // The raw NanoVDB buffer (what the GPU uploads); size is a multiple of 32 bytes.
+    const void* data() const { return storage_.data(); }
+    size_t size() const { return size_; }
+
+    // Trilinear value at an index-space position (0 outside the active voxels, the background).
+    float sampleIndex(glm::vec3 indexPos) const;
+
+    bool empty() const { return empty_; }
+    // Active voxels' index bounding box, grown by one voxel (trilinear support); empty() when none.
+    glm::vec3 indexMin() const { return indexMin_; }
+    glm::vec3 indexMax() const { return indexMax_; }
+    // Grid-space (the file's world) from index space: the file's affine voxel transform.
+    glm::mat4 gridFromIndex() const { return gridFromIndex_; }
+    uint64_t activeVoxels() const { return activeVoxels_; }
+
+private:
+    struct alignas(32) Block {
+        std::byte b[32];
+    };
+    std::vector<Block> storage_;
+    size_t size_ = 0;
+    bool empty_ = true;
+    glm::vec3 indexMin_{0.0f}, indexMax_{0.0f};
+    glm::mat4 gridFromIndex_{1.0f};
+    uint64_t activeVoxels_ = 0;
+};
+
+using DensityGridPtr = std::shared_ptr<const DensityGrid>;
+
+}  // namespace brume

@@ -1,0 +1,303 @@
+#include "vdb_import.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetUtil.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
+
+namespace brume {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Files above this size get status lines: OpenVDB reads without a progress callback, so the stages are
+// what the user sees.
+constexpr uintmax_t kLargeFileBytes = uintmax_t(32) << 20;
+
+void initOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::string className(openvdb::GridClass c) {
+    switch (c) {
+        case openvdb::GRID_LEVEL_SET: return "level set";
+        case openvdb::GRID_FOG_VOLUME: return "fog volume";
+        case openvdb::GRID_STAGGERED: return "staggered";
+        default: return "unknown";
+    }
+}
+
+bool isScalar(const openvdb::GridBase& g) {
+    return g.isType<openvdb::FloatGrid>() || g.isType<openvdb::DoubleGrid>();
+}
+
+// Every grid of the file. io::File, not io::Stream: Stream spins on some truncated files. Without
+// delayed loading, so no memory map can fault later.
+openvdb::GridPtrVecPtr readGrids(const std::string& path) {
+    initOpenVdb();
+    openvdb::io::File file(path);
+    file.open(/*delayLoad=*/false);
+    openvdb::GridPtrVecPtr grids = file.getGrids();
+    file.close();
+    return grids;
+}
+
+struct FileGrids {
+    openvdb::GridPtrVecPtr grids;
+    std::vector<std::string> names;  // "name" or "name#i" where names repeat
+};
+
+// Reads every grid (file versions, compression and half floats are the library's business).
+Result<FileGrids> readAll(const std::string& path, const std::function<void(const std::string&)>& status) {
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) return Error{path + ": cannot read the file (" + ec.message() + ")."};
+    if (status && bytes >= kLargeFileBytes) status("reading " + path + " (" + std::to_string(bytes >> 20) + " MiB)");
+    FileGrids out;
+    try {
+        out.grids = readGrids(path);
+    } catch (const std::exception& e) {
+        return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
+    } catch (...) {
+        return Error{path + ": not a readable OpenVDB file."};
+    }
+    if (!out.grids) return Error{path + ": not a readable OpenVDB file."};
+    std::map<std::string, int> count, seen;
+    for (const auto& g : *out.grids) ++count[g->getName()];
+    for (const auto& g : *out.grids) {
+        const std::string& n = g->getName();
+        out.names.push_back(count[n] > 1 ? n + "#" + std::to_string(seen[n]++) : n);
+    }
+    return out;
+}
+
+std::string gridList(const FileGrids& f) {
+    std::string s;
+    for (size_t i = 0; i < f.grids->size(); ++i) {
+        const auto& g = (*f.grids)[i];
+        if (!s.empty()) s += ", ";
+        s += "'" + f.names[i] + "' (" + g->valueType() + ", " + className(g->getGridClass()) + ")";
+    }
+    return s.empty() ? "none" : s;
+}
+
+// The grid named `want` ("name" or "name#i"); for the default name, else the only usable scalar grid
+// (a fog volume first).
+Result<size_t> chooseGrid(const std::string& path, const FileGrids& f, const std::string& want,
+                          std::vector<std::string>& warnings) {
+    for (size_t i = 0; i < f.names.size(); ++i) {
+        if (f.names[i] != want) continue;
+        if (!isScalar(*(*f.grids)[i]))
+            return Error{path + ": grid '" + want + "' holds " + (*f.grids)[i]->valueType() +
+                         " values, not a scalar density; grids found: " + gridList(f) + "."};
+        return i;
+    }
+    for (size_t i = 0; i < f.names.size(); ++i) {
+        if ((*f.grids)[i]->getName() == want) {  // duplicates addressed without "#i": the first
+            warnings.push_back(path + ": several grids are named '" + want + "'; using '" + f.names[i] +
+                               "' (address others as name#index).");
+            return i;
+        }
+    }
+    if (want == "density") {
+        std::vector<size_t> fog, scalar;
+        for (size_t i = 0; i < f.grids->size(); ++i) {
+            if (!isScalar(*(*f.grids)[i])) continue;
+            scalar.push_back(i);
+            if ((*f.grids)[i]->getGridClass() == openvdb::GRID_FOG_VOLUME) fog.push_back(i);
+        }
+        const std::vector<size_t>& pick = fog.size() == 1 ? fog : scalar;
+        if (pick.size() == 1) {
+            warnings.push_back(path + ": no grid named 'density'; using '" + f.names[pick[0]] + "', the only " +
+                               (fog.size() == 1 ? "fog volume" : "scalar grid") + ".");
+            return pick[0];
+        }
+    }
+    return Error{path + ": no usable grid named '" + want + "' (a float or double grid); grids found: " +
+                 gridList(f) + "."};
+}
+
+// Any scalar grid as a float grid (double grids are narrowed).
+openvdb::FloatGrid::Ptr asFloat(const openvdb::GridBase::Ptr& base) {
+    if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) return f;
+    auto d = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
+    auto f = openvdb::FloatGrid::create(std::make_shared<openvdb::FloatTree>(d->tree()));
+    f->setTransform(d->transform().copy());
+    f->setGridClass(d->getGridClass());
+    f->setName(d->getName());
+    return f;
+}
+
+// NaN, Inf and negative values (active, inactive, tiles and background) become 0.
+uint64_t sanitize(openvdb::FloatGrid& g) {
+    uint64_t bad = 0;
+    auto isBad = [](float v) { return !std::isfinite(v) || v < 0.0f; };
+    for (auto it = g.tree().beginValueAll(); it; ++it) {
+        if (isBad(*it)) {
+            it.setValue(0.0f);
+            bad += it.isVoxelValue() ? 1 : it.getVoxelCount();
+        }
+    }
+    if (isBad(g.background())) {
+        g.tree().root().setBackground(0.0f, /*updateChildNodes=*/true);
+        ++bad;
+    }
+    return bad;
+}
+
+std::string mib(uint64_t bytes) {
+    std::ostringstream s;
+    s.precision(3);
+    s << static_cast<double>(bytes) / (1024.0 * 1024.0) << " MiB";
+    return s.str();
+}
+
+Result<DensityGridPtr> toDensityGrid(const std::string& path, const openvdb::FloatGrid& g, uint64_t limit) {
+    const uint64_t openBytes = g.memUsage();
+    if (openBytes > limit)
+        return Error{path + ": the grid needs " + mib(openBytes) + " in memory, over the limit of " + mib(limit) +
+                     " (raise it with --vdb-memory-mb)."};
+    auto handle = nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, float>(g);
+    if (handle.size() > limit)
+        return Error{path + ": the grid needs " + mib(handle.size()) + " as NanoVDB, over the limit of " + mib(limit) +
+                     " (raise it with --vdb-memory-mb)."};
+    return DensityGridPtr(std::make_shared<const DensityGrid>(handle.data(), handle.size()));
+}
+
+Result<VdbLoad> convert(const std::string& path, const FileGrids& f, size_t index, const VdbImportOptions& options,
+                        std::vector<std::string> warnings) {
+    const openvdb::GridBase::Ptr base = (*f.grids)[index];
+    const std::string& name = f.names[index];
+    if (!base->transform().isLinear())
+        return Error{path + ": grid '" + name + "' has a frustum (non-affine) transform, which is not supported."};
+    openvdb::FloatGrid::Ptr g = asFloat(base);
+    if (g->getGridClass() == openvdb::GRID_LEVEL_SET) {
+        // First, while negative distances still mean "inside": inside = 1, a smooth ramp to 0 across
+        // the inner half of the narrow band.
+        openvdb::tools::sdfToFogVolume(*g);
+        warnings.push_back(path + ": grid '" + name + "' is a level set; converted to a fog volume (inside = 1).");
+    }
+    if (const uint64_t bad = sanitize(*g))
+        warnings.push_back(path + ": grid '" + name + "': " + std::to_string(bad) +
+                           " NaN, infinite or negative values replaced by 0.");
+    if (g->activeVoxelCount() == 0) warnings.push_back(path + ": grid '" + name + "' is empty; the volume is empty.");
+    if (options.status && g->activeVoxelCount() > (uint64_t(1) << 22))
+        options.status("converting '" + name + "' (" + std::to_string(g->activeVoxelCount()) + " voxels) to NanoVDB");
+    VdbLoad load;
+    auto grid = toDensityGrid(path, *g, options.memoryLimitBytes);
+    if (!grid) return grid.error();
+    load.grid = grid.value();
+    load.gridName = name;
+    load.warnings = std::move(warnings);
+    return load;
+}
+
+glm::dmat4 gridFromIndexOf(const openvdb::math::Transform& t) {
+    const openvdb::Mat4d m = t.baseMap()->getAffineMap()->getMat4();  // row vectors: p' = p * m
+    glm::dmat4 r(1.0);
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) r[c][row] = m(c, row);
+    return r;
+}
+
+template <class GridT>
+void scalarInfo(const openvdb::GridBase::Ptr& base, VdbGridInfo& info) {
+    auto g = openvdb::gridPtrCast<GridT>(base);
+    if (!g || info.activeVoxels == 0) return;
+    double lo = INFINITY, hi = -INFINITY;
+    for (auto it = g->cbeginValueOn(); it; ++it) {
+        lo = std::min(lo, static_cast<double>(*it));
+        hi = std::max(hi, static_cast<double>(*it));
+    }
+    info.valueMin = lo;
+    info.valueMax = hi;
+}
+
+VdbGridInfo describe(const openvdb::GridBase::Ptr& g, const std::string& name) {
+    VdbGridInfo info;
+    info.name = name;
+    info.type = g->valueType();
+    info.gridClass = className(g->getGridClass());
+    const openvdb::Vec3d vs = g->voxelSize();
+    info.voxelSize = glm::dvec3(vs[0], vs[1], vs[2]);
+    info.affine = g->transform().isLinear();
+    if (info.affine) info.gridFromIndex = gridFromIndexOf(g->transform());
+    info.activeVoxels = g->activeVoxelCount();
+    if (info.activeVoxels > 0) {
+        const openvdb::CoordBBox box = g->evalActiveVoxelBoundingBox();
+        info.indexMin = glm::ivec3(box.min()[0], box.min()[1], box.min()[2]);
+        info.indexMax = glm::ivec3(box.max()[0], box.max()[1], box.max()[2]);
+        const openvdb::BBoxd w = g->transform().indexToWorld(box);
+        info.worldMin = glm::dvec3(w.min()[0], w.min()[1], w.min()[2]);
+        info.worldMax = glm::dvec3(w.max()[0], w.max()[1], w.max()[2]);
+    }
+    scalarInfo<openvdb::FloatGrid>(g, info);
+    scalarInfo<openvdb::DoubleGrid>(g, info);
+    if (isScalar(*g) && info.affine) {
+        const openvdb::FloatGrid::Ptr f = asFloat(g);
+        info.nanovdbBytes = nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, float>(*f).size();
+        info.nanovdbFp16Bytes = nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, nanovdb::Fp16>(*f).size();
+        info.nanovdbFp8Bytes = nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, nanovdb::Fp8>(*f).size();
+    }
+    return info;
+}
+
+}  // namespace
+
+Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path) {
+    auto file = readAll(path, {});
+    if (!file) return file.error();
+    std::vector<VdbGridInfo> out;
+    try {
+        for (size_t i = 0; i < file.value().grids->size(); ++i)
+            out.push_back(describe((*file.value().grids)[i], file.value().names[i]));
+    } catch (const std::exception& e) {
+        return Error{path + ": cannot inspect the grids (" + std::string(e.what()) + ")."};
+    } catch (...) {
+        return Error{path + ": cannot inspect the grids."};
+    }
+    return out;
+}
+
+Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,
+                            std::vector<std::string>& warnings) {
+    for (size_t i = 0; i < scene.volumes.size(); ++i) {
+        Volume& v = scene.volumes[i];
+        if (v.type != VolumeType::Vdb) continue;
+        fs::path p(v.file);
+        if (p.is_relative()) p = fs::path(scene.baseDir) / p;
+        VdbImportOptions options;
+        options.grid = v.grid;
+        options.memoryLimitBytes = memoryLimitBytes;
+        auto load = loadVdbDensity(p.lexically_normal().string(), options);
+        if (!load) return Error{sceneFile + ": volumes[" + std::to_string(i) + "].file: " + load.error().message};
+        v.density = load.value().grid;
+        for (std::string& w : load.value().warnings) warnings.push_back(std::move(w));
+    }
+    return {};
+}
+
+Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& options) {
+    auto file = readAll(path, options.status);
+    if (!file) return file.error();
+    std::vector<std::string> warnings;
+    auto index = chooseGrid(path, file.value(), options.grid, warnings);
+    if (!index) return index.error();
+    try {
+        return convert(path, file.value(), index.value(), options, std::move(warnings));
+    } catch (const std::exception& e) {
+        return Error{path + ": cannot convert the grid (" + std::string(e.what()) + ")."};
+    } catch (...) {
+        return Error{path + ": cannot convert the grid."};
+    }
+}
+
+}  // namespace brume
