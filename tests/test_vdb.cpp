@@ -407,3 +407,23 @@ TEST_F(Vdb, CliInfoAndRenderExitTwoOnACorruptFile) {
         EXPECT_NE(err.find("cut.vdb"), std::string::npos) << err;
     }
 }
+
+// The GPU renderer does not sample NanoVDB yet: `brume render` (GPU by default) says so, naming the
+// volume, and still renders the rest; --cpu draws the volume and says nothing.
+TEST_F(Vdb, GpuRenderWarnsThatItDoesNotDrawVdbVolumesYet) {
+    requireShared();
+    const std::string bytes = readBytes(real("gaffer_arnold_sphere.vdb"));
+    writeBytes(dir_ / "sphere.vdb", bytes);
+    writeBytes(dir_ / "scene.json",
+               R"({"brume_scene": 1, "volumes": [{"type": "vdb", "name": "puff", "file": "sphere.vdb"}]})");
+    for (const std::string renderer : {"", " --cpu"}) {
+        const std::string cmd = "cd '" + dir_.string() + "' && '" + BRUME_EXE +
+                                "' render scene.json -o x.png --width 32 --height 18" + renderer + " >/dev/null 2>err.txt";
+        const int status = std::system(cmd.c_str());
+        ASSERT_TRUE(WIFEXITED(status));
+        EXPECT_EQ(WEXITSTATUS(status), 0) << renderer;
+        const std::string err = readBytes((dir_ / "err.txt").string());
+        const bool warned = err.find("warning: scene.json: volume 'puff' is a vdb volume") != std::string::npos;
+        EXPECT_EQ(warned, renderer.empty()) << renderer << ": " << err;
+    }
+}
