@@ -19,6 +19,12 @@
 using namespace brume;
 namespace fs = std::filesystem;
 
+// GTEST_SKIP returns only from the function it is written in, so this must be a macro used in the
+// test body itself: a helper function would skip nothing and the test would run on without data.
+#define BRUME_REQUIRE_SHARED_VDB()                                                         \
+    if (!std::filesystem::is_directory(brume::test::sharedVdbDir()))                       \
+    GTEST_SKIP() << "../shared/vdb is absent (a fresh clone has no ../shared); real-file test skipped"
+
 namespace {
 
 class Vdb : public ::testing::Test {
@@ -31,9 +37,6 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir_); }
 
-    static void requireShared() {
-        if (!fs::is_directory(test::sharedVdbDir())) GTEST_SKIP() << "../shared/vdb is absent; real-file tests skipped";
-    }
     static std::string real(const char* name) { return (test::sharedVdbDir() / name).string(); }
 
     static VdbLoad load(const std::string& path, const std::string& grid = "density") {
@@ -68,7 +71,7 @@ float linearField(glm::dvec3 q) { return static_cast<float>(1.0 + 0.01 * q.x + 0
 // ---- ../shared/vdb, row by row of its README table ----
 
 TEST_F(Vdb, GafferSmokeIsAHalfFloatFogVolumeInTheOldFormat) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("gaffer_smoke.vdb"));
     ASSERT_TRUE(l.grid);
     EXPECT_EQ(l.grid->activeVoxels(), 1049275u);
@@ -77,7 +80,7 @@ TEST_F(Vdb, GafferSmokeIsAHalfFloatFogVolumeInTheOldFormat) {
 }
 
 TEST_F(Vdb, GafferSphereLevelSetBecomesFogWithAWarning) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("gaffer_sphere.vdb"));  // no "density": the only scalar grid, ls_sphere
     ASSERT_TRUE(l.grid);
     EXPECT_EQ(l.gridName, "ls_sphere");
@@ -88,14 +91,14 @@ TEST_F(Vdb, GafferSphereLevelSetBecomesFogWithAWarning) {
 }
 
 TEST_F(Vdb, GafferArnoldSphereBloscFileLoads) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("gaffer_arnold_sphere.vdb"));
     ASSERT_TRUE(l.grid);
     EXPECT_EQ(l.grid->activeVoxels(), 465u);
 }
 
 TEST_F(Vdb, OiioSphereIsDenseInsideAndEmptyOutside) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("oiio_sphere.vdb"));
     ASSERT_TRUE(l.grid);
     EXPECT_EQ(l.grid->activeVoxels(), 9047u);
@@ -104,14 +107,14 @@ TEST_F(Vdb, OiioSphereIsDenseInsideAndEmptyOutside) {
 }
 
 TEST_F(Vdb, OiioSphereCdHasNoDensityAndTheErrorListsTheGrids) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const std::string e = loadError(real("oiio_sphereCd.vdb"));
     EXPECT_NE(e.find("oiio_sphereCd.vdb"), std::string::npos) << e;
     EXPECT_NE(e.find("'Cd' (vec3s, unknown)"), std::string::npos) << e;
 }
 
 TEST_F(Vdb, UsdSmokeFirstFrameIsEmptyWithAWarning) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("usd_smoke_000001.vdb"));
     ASSERT_TRUE(l.grid);
     EXPECT_TRUE(l.grid->empty());
@@ -124,7 +127,7 @@ TEST_F(Vdb, UsdSmokeFirstFrameIsEmptyWithAWarning) {
 }
 
 TEST_F(Vdb, UsdSmokeSecondFrameKeepsItsNonUniformVoxels) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("usd_smoke_000002.vdb"));
     ASSERT_TRUE(l.grid);
     EXPECT_EQ(l.grid->activeVoxels(), 71983u);
@@ -135,7 +138,7 @@ TEST_F(Vdb, UsdSmokeSecondFrameKeepsItsNonUniformVoxels) {
 }
 
 TEST_F(Vdb, PlasmaDxrNewestFormatWithEightGridsPicksDensity) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const VdbLoad l = load(real("plasmadxr_fluid_data_0001.vdb"));
     ASSERT_TRUE(l.grid);
     EXPECT_EQ(l.gridName, "density");
@@ -147,7 +150,7 @@ TEST_F(Vdb, PlasmaDxrNewestFormatWithEightGridsPicksDensity) {
 }
 
 TEST_F(Vdb, InfoListsEveryGridWithItsNanoVdbSize) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     Result<std::vector<VdbGridInfo>> r = inspectVdb(real("plasmadxr_fluid_data_0001.vdb"));
     ASSERT_TRUE(r.ok()) << r.error().message;
     ASSERT_EQ(r.value().size(), 8u);
@@ -376,7 +379,7 @@ void expectSentence(const std::string& message, const std::string& file) {
 // crashes on some flipped bytes and loads some truncated uncompressed files (oiio_sphere.vdb cut in
 // half) without noticing; reading in an isolated process is the fix.
 TEST_F(Vdb, TruncatedFilesGiveOneSentenceErrors) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     for (const char* name : {"gaffer_arnold_sphere.vdb", "usd_smoke_000002.vdb", "plasmadxr_fluid_data_0001.vdb"}) {
         const std::string bytes = readBytes(real(name));
         const fs::path bad = dir_ / name;
@@ -392,7 +395,7 @@ TEST_F(Vdb, TruncatedFilesGiveOneSentenceErrors) {
 
 // The command line's contract on a corrupt file: exit code 2 and one line on stderr.
 TEST_F(Vdb, CliInfoAndRenderExitTwoOnACorruptFile) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const std::string bytes = readBytes(real("gaffer_arnold_sphere.vdb"));
     writeBytes(dir_ / "cut.vdb", bytes.substr(0, bytes.size() / 2));
     writeBytes(dir_ / "scene.json", R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": "cut.vdb"}]})");
@@ -411,7 +414,7 @@ TEST_F(Vdb, CliInfoAndRenderExitTwoOnACorruptFile) {
 // The GPU renderer does not sample NanoVDB yet: `brume render` (GPU by default) says so, naming the
 // volume, and still renders the rest; --cpu draws the volume and says nothing.
 TEST_F(Vdb, GpuRenderWarnsThatItDoesNotDrawVdbVolumesYet) {
-    requireShared();
+    BRUME_REQUIRE_SHARED_VDB();
     const std::string bytes = readBytes(real("gaffer_arnold_sphere.vdb"));
     writeBytes(dir_ / "sphere.vdb", bytes);
     writeBytes(dir_ / "scene.json",
