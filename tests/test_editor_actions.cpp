@@ -315,3 +315,45 @@ TEST(EditorView, PickSelectsTheNearestVolumeOrTheLightUnderTheCursor) {
     s.lights[0].hidden = true;
     EXPECT_EQ(at(lightU, 0.5f), "none");
 }
+
+// The translate gizmo's drag: the object follows the cursor along one world axis only, snapped
+// when asked; a ray along the axis gives no drag rather than a jump.
+TEST(EditorView, GizmoDragMovesAlongOneAxisWithSnapping) {
+    Camera c;
+    c.position = {0.0f, 0.0f, 10.0f};
+    c.target = {0.0f, 0.0f, 0.0f};
+    const float aspect = 16.0f / 9.0f;
+    auto rayAt = [&](glm::vec3 p) {
+        const std::optional<glm::vec2> w = windowFromWorld(c, aspect, p);
+        EXPECT_TRUE(w.has_value());
+        return rayDirection(c, aspect, w->x, w->y);
+    };
+    const std::optional<glm::vec2> centre = windowFromWorld(c, aspect, c.target);
+    ASSERT_TRUE(centre);
+    EXPECT_NEAR(centre->x, 0.5f, 1e-6f);
+    EXPECT_NEAR(centre->y, 0.5f, 1e-6f);
+    EXPECT_FALSE(windowFromWorld(c, aspect, {0.0f, 0.0f, 20.0f}));  // behind the camera
+
+    const glm::vec3 start{1.0f, 0.0f, 0.0f}, x{1.0f, 0.0f, 0.0f};
+    const std::optional<float> s0 = axisParam(start, x, c.position, rayAt(start));
+    ASSERT_TRUE(s0);
+    EXPECT_NEAR(*s0, 0.0f, 1e-4f);
+    // The cursor over the axis at x = 3.1: the object follows it there.
+    const std::optional<float> s = axisParam(start, x, c.position, rayAt({3.1f, 0.0f, 0.0f}));
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(axisDrag(start, x, *s0, *s, 0.0f).x, 3.1f, 1e-3f);
+    EXPECT_NEAR(axisDrag(start, x, *s0, *s, 0.25f).x, 3.0f, 1e-5f);  // a 2.1 m move snaps to 2
+    // The cursor also drifted up off the axis: only x changes.
+    const std::optional<float> sUp = axisParam(start, x, c.position, rayAt({3.1f, 0.7f, 0.0f}));
+    ASSERT_TRUE(sUp);
+    const glm::vec3 drifted = axisDrag(start, x, *s0, *sUp, 0.0f);
+    EXPECT_NEAR(drifted.x, 3.1f, 0.05f);
+    EXPECT_EQ(drifted.y, 0.0f);
+    EXPECT_EQ(drifted.z, 0.0f);
+    EXPECT_FALSE(axisParam(start, {0.0f, 0.0f, 1.0f}, c.position, glm::vec3(0.0f, 0.0f, -1.0f)));
+
+    Scene scene = loadDefault().scene();
+    EXPECT_EQ(positionPath(scene, "volume", 0), "volumes[0].transform.translation");
+    EXPECT_EQ(positionPath(scene, "light", 1), "lights[1].position");
+    EXPECT_EQ(positionPath(scene, "light", 0), "");  // the sun has no position
+}

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/settings.h"
+#include "gizmo.h"
 #include "view.h"
 #include "io/scene_json.h"
 
@@ -419,7 +420,8 @@ void handleViewportInput(Editor& e, UiState& ui, double now) {
         if (!ctrl && io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H)) showAll(e, now);
     }
     if (!io.WantCaptureKeyboard) flyKeys(e, ui, now);
-    if (io.WantCaptureMouse) return;
+    // Drawn even under the panels; it takes the mouse only when ImGui does not want it.
+    if (translateGizmo(e, ui.gizmo, now) || io.WantCaptureMouse) return;
     // A drag is one undo step: begin on press, end on release. A click that did not move picks.
     for (int b = 0; b < 3; ++b) {
         if (ImGui::IsMouseClicked(b)) (void)e.run("begin");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "editor.h"
+#include "gizmo.h"
 
 namespace brume::editor {
 
@@ -12,6 +13,7 @@ struct UiState {
     bool showHelp = false;
     bool closeRequested = false;   // the window's close button with unsaved changes: ask first
     bool closeConfirmed = false;
+    GizmoState gizmo;
     bool flying = false;           // a fly key is held: its moves are one undo step   // the user chose Save or Discard
     std::string recoveryPath;      // non-empty: offer to recover this autosave
     char saveAsPath[512] = {};

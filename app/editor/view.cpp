@@ -144,8 +144,7 @@ std::optional<Picked> pick(const Scene& scene, float aspect, float u, float v) {
     const Camera& c = scene.camera;
     const Axes a = axesOf(c);
     const float tanY = std::tan(glm::radians(c.fov_y_deg) * 0.5f);
-    const float ndcX = 2.0f * u - 1.0f, ndcY = 1.0f - 2.0f * v;
-    const glm::vec3 dir = glm::normalize(a.forward + a.right * (ndcX * tanY * aspect) + a.up * (ndcY * tanY));
+    const glm::vec3 dir = rayDirection(c, aspect, u, v);
     std::optional<Picked> best;
     float bestT = std::numeric_limits<float>::max();
     for (size_t i = 0; i < scene.volumes.size(); ++i) {
@@ -169,6 +168,54 @@ std::optional<Picked> pick(const Scene& scene, float aspect, float u, float v) {
     }
     if (light) return light;
     return best;
+}
+
+glm::vec3 rayDirection(const Camera& c, float aspect, float u, float v) {
+    const Axes a = axesOf(c);
+    const float tanY = std::tan(glm::radians(c.fov_y_deg) * 0.5f);
+    const float ndcX = 2.0f * u - 1.0f, ndcY = 1.0f - 2.0f * v;
+    return glm::normalize(a.forward + a.right * (ndcX * tanY * aspect) + a.up * (ndcY * tanY));
+}
+
+std::optional<glm::vec2> windowFromWorld(const Camera& c, float aspect, glm::vec3 p) {
+    const Axes a = axesOf(c);
+    const glm::vec3 d = p - c.position;
+    const float z = glm::dot(d, a.forward);
+    if (z <= 1e-4f) return std::nullopt;
+    const float tanY = std::tan(glm::radians(c.fov_y_deg) * 0.5f);
+    const float ndcX = glm::dot(d, a.right) / (z * tanY * aspect), ndcY = glm::dot(d, a.up) / (z * tanY);
+    return glm::vec2(0.5f * (ndcX + 1.0f), 0.5f * (1.0f - ndcY));
+}
+
+std::optional<float> axisParam(glm::vec3 origin, glm::vec3 axis, glm::vec3 rayOrigin, glm::vec3 rayDir) {
+    // Closest points of two lines: solve for s on the axis and t on the ray (both unit length).
+    const glm::vec3 w = origin - rayOrigin;
+    const float b = glm::dot(axis, rayDir), d = glm::dot(axis, w), e = glm::dot(rayDir, w);
+    const float den = 1.0f - b * b;
+    if (den < 1e-4f) return std::nullopt;  // within ~0.6 degrees of parallel
+    return (b * e - d) / den;
+}
+
+glm::vec3 axisDrag(glm::vec3 start, glm::vec3 axis, float s0, float s, float snap) {
+    float move = s - s0;
+    if (snap > 0.0f) move = std::round(move / snap) * snap;
+    return start + axis * move;
+}
+
+std::string positionPath(const Scene& scene, const std::string& kind, size_t index) {
+    const std::string i = "[" + std::to_string(index) + "]";
+    if (kind == "volume" && index < scene.volumes.size()) {
+        const VolumeType t = scene.volumes[index].type;
+        return t == VolumeType::Box || t == VolumeType::Vdb ? "volumes" + i + ".transform.translation" : "";
+    }
+    if (kind == "light" && index < scene.lights.size())
+        return scene.lights[index].type == LightType::Directional ? "" : "lights" + i + ".position";
+    if (kind == "geometry" && index < scene.geometry.size()) {
+        const GeometryType t = scene.geometry[index].type;
+        return t == GeometryType::Box ? "geometry" + i + ".transform.translation"
+             : t == GeometryType::Sphere ? "geometry" + i + ".center" : "";
+    }
+    return "";
 }
 
 }  // namespace brume::editor

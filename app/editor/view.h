@@ -45,4 +45,18 @@ struct Picked {
 // (point, spot) within 2% of the view height of the ray; nothing when the ray misses them all.
 std::optional<Picked> pick(const Scene& scene, float aspect, float u, float v);
 
+// Translate gizmo. The world direction of the camera ray through window fractions (u, v).
+glm::vec3 rayDirection(const Camera& c, float aspect, float u, float v);
+// Window fractions of a world point, or nothing when it is behind the camera.
+std::optional<glm::vec2> windowFromWorld(const Camera& c, float aspect, glm::vec3 p);
+// Parameter along the line origin + s * axis (axis of unit length) of its point closest to the
+// ray; nothing when the ray runs along the axis (no stable drag there).
+std::optional<float> axisParam(glm::vec3 origin, glm::vec3 axis, glm::vec3 rayOrigin, glm::vec3 rayDir);
+// Where an axis drag puts the object: start + axis * (s - s0), the move rounded to a multiple of
+// `snap` metres when snap > 0.
+glm::vec3 axisDrag(glm::vec3 start, glm::vec3 axis, float s0, float s, float snap);
+// The settings path of the selected object's position ("volumes[2].transform.translation",
+// "lights[0].position", "geometry[1].center"), or "" when it has none to drag.
+std::string positionPath(const Scene& scene, const std::string& kind, size_t index);
+
 }  // namespace brume::editor
