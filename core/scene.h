@@ -80,6 +80,9 @@ struct Light {
     float fog_scale = settings::light_fog_scale.f();
     float inner_deg = settings::light_inner_deg.f();
     float outer_deg = settings::light_outer_deg.f();
+    // Editor view state (brume-editor's hide): not in the scene format, never saved; the renderers
+    // ignore it, the editor renders a copy without hidden objects (app/editor/view.h).
+    bool hidden = false;
     bool operator==(const Light&) const = default;
 };
 
@@ -116,6 +119,9 @@ struct Volume {
     // loaded: an unloaded vdb volume is empty.
     DensityGridPtr density;
     Medium medium;
+    // Editor view state (brume-editor's hide): not in the scene format, never saved; the renderers
+    // ignore it, the editor renders a copy without hidden objects (app/editor/view.h).
+    bool hidden = false;
     bool operator==(const Volume&) const = default;
 };
 
@@ -130,6 +136,9 @@ struct Geometry {
     float radius = settings::geometry_radius.f();        // sphere
     glm::vec3 albedo = vec3Default(settings::geometry_albedo);
     glm::vec3 emission = vec3Default(settings::geometry_emission);
+    // Editor view state (brume-editor's hide): not in the scene format, never saved; the renderers
+    // ignore it, the editor renders a copy without hidden objects (app/editor/view.h).
+    bool hidden = false;
     bool operator==(const Geometry&) const = default;
 };
 

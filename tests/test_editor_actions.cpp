@@ -2,10 +2,13 @@
 // tests drive the document exactly as the mouse, keyboard and --script do.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
+#include "app/editor/accumulation.h"
 #include "app/editor/autosave.h"
 #include "app/editor/document.h"
+#include "app/editor/view.h"
 #include "io/scene_json.h"
 
 namespace fs = std::filesystem;
@@ -170,4 +173,187 @@ TEST(EditorAutosave, WritesWhileDirtyAtMostOncePerIntervalAndRemovesWhenSaved) {
     ASSERT_TRUE(autosave.tick(doc, 21.0).ok());
     EXPECT_FALSE(fs::exists(autosave.path()));
     fs::remove_all(dir);
+}
+
+// The viewport keeps rendering a resting view until temporal accumulation has converged, then
+// stops; any change (an edit, the preset, the size) starts the count again.
+TEST(EditorAccumulation, RendersUntilConvergedThenStopsAndRestartsOnChange) {
+    Scene scene = loadDefault().scene();
+    scene.temporal.enabled = true;
+    scene.temporal.history_weight = 0.9f;
+    const int n = convergedFrames(scene);
+    EXPECT_EQ(n, 29);  // 0.9^29 = 0.047 < 5% <= 0.9^28
+    Accumulation acc;
+    const ViewKey view{7, Quality::Low, 160, 90};
+    int rendered = 0;
+    for (int i = 0; i < 200 && acc.wantsFrame(view, scene, false); ++i) acc.rendered(view), ++rendered;
+    EXPECT_EQ(rendered, n);
+    EXPECT_EQ(acc.frames(), n);
+    EXPECT_TRUE(acc.wantsFrame(view, scene, true));  // --frames times every frame
+
+    ViewKey edited = view;
+    edited.revision = 8;
+    EXPECT_TRUE(acc.wantsFrame(edited, scene, false));
+    acc.rendered(edited);
+    EXPECT_EQ(acc.frames(), 1);
+    ViewKey resized = edited;
+    resized.width = 320;
+    EXPECT_TRUE(acc.wantsFrame(resized, scene, false));
+    ViewKey preset = edited;
+    preset.quality = Quality::High;
+    EXPECT_TRUE(acc.wantsFrame(preset, scene, false));
+
+    // Without temporal every frame is the same: one is enough.
+    scene.temporal.enabled = false;
+    EXPECT_EQ(convergedFrames(scene), 1);
+    EXPECT_FALSE(acc.wantsFrame(edited, scene, false));
+    scene.temporal.enabled = true;
+    scene.temporal.history_weight = 0.99f;
+    EXPECT_EQ(convergedFrames(scene), 64);  // capped, see accumulation.cpp
+}
+
+// Hiding is an undoable edit of view state: the viewport renders the scene without the object, a
+// file never holds it, and it does not make the scene dirty.
+TEST(EditorView, HideIsUndoableNotRenderedAndNotSaved) {
+    const fs::path dir = tempDir("hide");
+    Document doc = loadDefault((dir / "scene.json").string());
+    ASSERT_GE(doc.scene().volumes.size(), 2u);
+    run(doc, "hide volume 0");
+    EXPECT_TRUE(doc.scene().volumes[0].hidden);
+    EXPECT_FALSE(doc.dirty());
+    EXPECT_TRUE(doc.canUndo());
+    Scene without = doc.scene();
+    without.volumes.erase(without.volumes.begin());
+    EXPECT_EQ(withoutViewState(visibleScene(doc.scene())), withoutViewState(without));
+    run(doc, "set volumes[1].medium.phase_g 0.5");  // an edit through the JSON form keeps it hidden
+    EXPECT_TRUE(doc.scene().volumes[0].hidden);
+    run(doc, "save");
+    Result<Scene> saved = loadSceneFile((dir / "scene.json").string());
+    ASSERT_TRUE(saved.ok());
+    EXPECT_EQ(saved.value().volumes.size(), doc.scene().volumes.size());
+    EXPECT_FALSE(saved.value().volumes[0].hidden);
+    run(doc, "undo");
+    run(doc, "undo");
+    EXPECT_FALSE(doc.scene().volumes[0].hidden);
+    EXPECT_EQ(visibleScene(doc.scene()).volumes.size(), doc.scene().volumes.size());
+    EXPECT_FALSE(doc.apply(parseAction("hide volume 99").value()).ok());
+    fs::remove_all(dir);
+}
+
+TEST(EditorView, FlyMovesAlongTheViewAndLookTurnsAboutTheEye) {
+    Camera c;
+    c.position = {0.0f, 2.0f, 10.0f};
+    c.target = {0.0f, 2.0f, 0.0f};
+    const Camera f = flyCamera(c, {1.0f, 0.5f, 2.0f});  // right, up, forward
+    EXPECT_NEAR(glm::distance(f.position, glm::vec3(1.0f, 2.5f, 8.0f)), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(f.target - f.position, c.target - c.position), 0.0f, 1e-5f);
+    const Camera l = lookCamera(c, 30.0f, 0.0f);
+    EXPECT_EQ(l.position, c.position);
+    const glm::vec3 a = glm::normalize(c.target - c.position), b = glm::normalize(l.target - l.position);
+    EXPECT_NEAR(glm::degrees(std::acos(glm::dot(a, b))), 30.0f, 1e-2f);
+    EXPECT_LT(b.x, 0.0f);  // positive yaw turns left (counter-clockwise about +Y)
+    const Camera p = lookCamera(c, 0.0f, 120.0f);  // stops short of straight up
+    EXPECT_NEAR(glm::degrees(std::asin(glm::normalize(p.target - p.position).y)), 89.0f, 1e-2f);
+}
+
+TEST(EditorView, FrameSelectedFitsTheObjectInTheView) {
+    Scene s;
+    s.camera.position = {0.0f, 1.0f, 20.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    Volume v;
+    v.type = VolumeType::Box;
+    v.transform.translation = {5.0f, 1.0f, -3.0f};
+    v.transform.scale = {4.0f, 2.0f, 1.0f};
+    s.volumes.push_back(v);
+    Result<Bounds> b = objectBounds(s, "volume", 0);
+    ASSERT_TRUE(b.ok());
+    const Camera c = frameCamera(s.camera, b.value());
+    EXPECT_EQ(c.target, v.transform.translation);
+    const glm::vec3 fwd = glm::normalize(c.target - c.position);
+    EXPECT_NEAR(glm::dot(fwd, glm::normalize(s.camera.target - s.camera.position)), 1.0f, 1e-5f);
+    // Every corner of the box lies inside the vertical field of view's cone.
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner = v.transform.translation + 0.5f * v.transform.scale *
+                                 glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+        const float angle = glm::degrees(std::acos(glm::dot(glm::normalize(corner - c.position), fwd)));
+        EXPECT_LT(angle, 0.5f * c.fov_y_deg) << "corner " << i;
+    }
+    Volume fog;
+    fog.type = VolumeType::Height;
+    s.volumes.push_back(fog);
+    EXPECT_FALSE(objectBounds(s, "volume", 1).ok());  // fills the world
+    EXPECT_FALSE(objectBounds(s, "light", 0).ok());   // no such light
+}
+
+TEST(EditorView, PickSelectsTheNearestVolumeOrTheLightUnderTheCursor) {
+    Scene s;
+    s.camera.position = {0.0f, 0.0f, 10.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.fov_y_deg = 60.0f;
+    Volume far, near;
+    far.type = near.type = VolumeType::Box;
+    far.transform.scale = glm::vec3(2.0f);
+    near.transform.translation = {0.0f, 0.0f, 4.0f};
+    s.volumes = {far, near};
+    Light light = makeLight(LightType::Point);
+    light.position = {2.0f, 0.0f, 0.0f};
+    s.lights = {light};
+    const float aspect = 16.0f / 9.0f;
+    auto at = [&](float u, float v) {
+        std::optional<Picked> p = pick(s, aspect, u, v);
+        return p ? p->kind + " " + std::to_string(p->index) : std::string("none");
+    };
+    EXPECT_EQ(at(0.5f, 0.5f), "volume 1");  // the near box hides the far one
+    EXPECT_EQ(at(0.02f, 0.02f), "none");
+    const float tanY = std::tan(glm::radians(30.0f));
+    const float lightU = 0.5f + 0.5f * 2.0f / (10.0f * tanY * aspect);
+    EXPECT_EQ(at(lightU, 0.5f), "light 0");
+    EXPECT_EQ(at(lightU, 0.5f + 0.015f), "light 0");  // within 2% of the view height
+    EXPECT_EQ(at(lightU, 0.5f + 0.03f), "none");
+    s.volumes[1].hidden = true;                       // hidden objects are not picked
+    EXPECT_EQ(at(0.5f, 0.5f), "volume 0");
+    s.lights[0].hidden = true;
+    EXPECT_EQ(at(lightU, 0.5f), "none");
+}
+
+// The translate gizmo's drag: the object follows the cursor along one world axis only, snapped
+// when asked; a ray along the axis gives no drag rather than a jump.
+TEST(EditorView, GizmoDragMovesAlongOneAxisWithSnapping) {
+    Camera c;
+    c.position = {0.0f, 0.0f, 10.0f};
+    c.target = {0.0f, 0.0f, 0.0f};
+    const float aspect = 16.0f / 9.0f;
+    auto rayAt = [&](glm::vec3 p) {
+        const std::optional<glm::vec2> w = windowFromWorld(c, aspect, p);
+        EXPECT_TRUE(w.has_value());
+        return rayDirection(c, aspect, w->x, w->y);
+    };
+    const std::optional<glm::vec2> centre = windowFromWorld(c, aspect, c.target);
+    ASSERT_TRUE(centre);
+    EXPECT_NEAR(centre->x, 0.5f, 1e-6f);
+    EXPECT_NEAR(centre->y, 0.5f, 1e-6f);
+    EXPECT_FALSE(windowFromWorld(c, aspect, {0.0f, 0.0f, 20.0f}));  // behind the camera
+
+    const glm::vec3 start{1.0f, 0.0f, 0.0f}, x{1.0f, 0.0f, 0.0f};
+    const std::optional<float> s0 = axisParam(start, x, c.position, rayAt(start));
+    ASSERT_TRUE(s0);
+    EXPECT_NEAR(*s0, 0.0f, 1e-4f);
+    // The cursor over the axis at x = 3.1: the object follows it there.
+    const std::optional<float> s = axisParam(start, x, c.position, rayAt({3.1f, 0.0f, 0.0f}));
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(axisDrag(start, x, *s0, *s, 0.0f).x, 3.1f, 1e-3f);
+    EXPECT_NEAR(axisDrag(start, x, *s0, *s, 0.25f).x, 3.0f, 1e-5f);  // a 2.1 m move snaps to 2
+    // The cursor also drifted up off the axis: only x changes.
+    const std::optional<float> sUp = axisParam(start, x, c.position, rayAt({3.1f, 0.7f, 0.0f}));
+    ASSERT_TRUE(sUp);
+    const glm::vec3 drifted = axisDrag(start, x, *s0, *sUp, 0.0f);
+    EXPECT_NEAR(drifted.x, 3.1f, 0.05f);
+    EXPECT_EQ(drifted.y, 0.0f);
+    EXPECT_EQ(drifted.z, 0.0f);
+    EXPECT_FALSE(axisParam(start, {0.0f, 0.0f, 1.0f}, c.position, glm::vec3(0.0f, 0.0f, -1.0f)));
+
+    Scene scene = loadDefault().scene();
+    EXPECT_EQ(positionPath(scene, "volume", 0), "volumes[0].transform.translation");
+    EXPECT_EQ(positionPath(scene, "light", 1), "lights[1].position");
+    EXPECT_EQ(positionPath(scene, "light", 0), "");  // the sun has no position
 }

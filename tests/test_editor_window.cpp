@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -67,20 +68,28 @@ TEST(EditorWindow, ScreenshotOfTheViewportMatchesTheHeadlessRender) {
     REQUIRE_XVFB();
     const fs::path dir = tempDir("shot");
     std::string log;
-    ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + kSmall + " --hide-ui --frames 2 --screenshot " +
+    // The viewport accumulates while the view rests: its 3rd frame is `brume render --frames 3`.
+    ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + kSmall + " --hide-ui --frames 3 --screenshot " +
                  quoted((dir / "editor.png").string()), &log), 0) << log;
-    ASSERT_EQ(sh(std::string(BRUME_EXE) + " render " + quoted((dir / "scene.json").string()) + " -o " +
-                 quoted((dir / "cli.png").string()) + " --width 160 --height 90 --quality low", &log), 0) << log;
+    for (const char* frames : {"1", "3"})
+        ASSERT_EQ(sh(std::string(BRUME_EXE) + " render " + quoted((dir / "scene.json").string()) + " -o " +
+                     quoted((dir / ("cli" + std::string(frames) + ".png")).string()) +
+                     " --width 160 --height 90 --quality low --frames " + frames, &log), 0) << log;
     Result<Image> a = readPngLinear((dir / "editor.png").string());
-    Result<Image> b = readPngLinear((dir / "cli.png").string());
-    ASSERT_TRUE(a.ok() && b.ok());
+    Result<Image> b = readPngLinear((dir / "cli3.png").string());
+    Result<Image> one = readPngLinear((dir / "cli1.png").string());
+    ASSERT_TRUE(a.ok() && b.ok() && one.ok());
     ASSERT_EQ(a.value().width, 160);
     ASSERT_EQ(a.value().height, 90);
     // Same renderer, same display transform and 8-bit rounding: the bytes agree; 0.5% leaves room
     // for a different device behind the two processes.
     const double err = relativeMeanAbsError(a.value(), b.value());
-    std::printf("editor viewport vs brume render: relative mean abs error %.3g\n", err);
+    const double unaccumulated = relativeMeanAbsError(one.value(), b.value());
+    std::printf("editor viewport vs brume render --frames 3: relative mean abs error %.3g "
+                "(1 frame vs 3: %.3g)\n", err, unaccumulated);
     EXPECT_LT(err, 0.005);
+    // The accumulation shows: a viewport restarting the history every frame would be `--frames 1`.
+    EXPECT_GT(unaccumulated, 2.0 * err);
     fs::remove_all(dir);
 }
 
@@ -99,6 +108,12 @@ TEST(EditorWindow, ScriptedSessionAddsMovesRetunesSavesAndUndoes) {
                                           "undo\n"
                                           "undo\n"
                                           "save " + (dir / "undone.json").string() + "\n"
+                                          "# click the box at the centre of the view, frame it (F)\n"
+                                          "set volumes[3].transform.translation 0 1.1 0\n"
+                                          "select none\n"
+                                          "pick 0.5 0.5\n"
+                                          "frame\n"
+                                          "save " + (dir / "framed.json").string() + "\n"
                                           "quit\n";
     std::string log;
     ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + kSmall + " --script " + quoted((dir / "session.txt").string()) +
@@ -116,10 +131,19 @@ TEST(EditorWindow, ScriptedSessionAddsMovesRetunesSavesAndUndoes) {
     ASSERT_EQ(undone.value().volumes.size(), 4u);
     EXPECT_EQ(undone.value().volumes[3].transform.translation, glm::vec3(0.0f));
     EXPECT_EQ(undone.value().volumes[3].medium.scattering, Medium{}.scattering);
+    // The pick selected the unit box (framing anything else, or nothing, fails or aims elsewhere):
+    // its bounding sphere (radius sqrt(3)/2) fills the 50 degree view with a 20% margin.
+    Result<Scene> framed = loadSceneFile((dir / "framed.json").string());
+    ASSERT_TRUE(framed.ok()) << framed.error().message;
+    const Camera& c = framed.value().camera;
+    EXPECT_LT(glm::distance(c.target, glm::vec3(0.0f, 1.1f, 0.0f)), 1e-4f);
+    const float want = 1.2f * 0.5f * std::sqrt(3.0f) / std::sin(glm::radians(25.0f));
+    EXPECT_NEAR(glm::distance(c.position, c.target), want, 1e-3f);
     // The recording replays the session (comments dropped, every action kept).
     const std::string recorded = readText(dir / "recorded.txt");
     EXPECT_NE(recorded.find("set volumes[3].medium.scattering 0.9 0.8 0.7"), std::string::npos) << recorded;
     EXPECT_EQ(recorded.find('#'), std::string::npos);
+    EXPECT_NE(recorded.find("pick 0.5 0.5"), std::string::npos) << recorded;
     fs::remove_all(dir);
 }
 

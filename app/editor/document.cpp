@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/scene_json.h"
+#include "view.h"
 
 namespace brume::editor {
 namespace {
@@ -83,15 +84,22 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
     Result<Scene> s = parseScene(j.dump(), "edit");
     if (!s) return s.error();
     s.value().baseDir = current.baseDir;
+    // Hidden is editor state the JSON form does not carry; a set never changes the counts.
+    Scene& n = s.value();
+    for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) n.volumes[i].hidden = current.volumes[i].hidden;
+    for (size_t i = 0; i < n.lights.size() && i < current.lights.size(); ++i) n.lights[i].hidden = current.lights[i].hidden;
+    for (size_t i = 0; i < n.geometry.size() && i < current.geometry.size(); ++i) n.geometry[i].hidden = current.geometry[i].hidden;
     return s;
 }
 
 }  // namespace
 
+bool Document::dirty() const { return !(withoutViewState(scene_) == withoutViewState(saved_)); }
+
 Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), saved_(scene_), path_(std::move(path)) {}
 
 bool Document::isDocumentVerb(const std::string& verb) {
-    for (const char* v : {"add", "delete", "duplicate", "rename", "set", "begin", "end", "undo", "redo", "save"})
+    for (const char* v : {"add", "delete", "duplicate", "rename", "hide", "show", "set", "begin", "end", "undo", "redo", "save"})
         if (verb == v) return true;
     return false;
 }
@@ -100,6 +108,7 @@ Result<void> Document::apply(const Action& a) {
     if (a.verb == "add") return add(a.args);
     if (a.verb == "delete" || a.verb == "duplicate") return removeOrDuplicate(a.verb, a.args);
     if (a.verb == "rename") return rename(a.args);
+    if (a.verb == "hide" || a.verb == "show") return hide(a.verb, a.args);
     if (a.verb == "set") return set(a.args);
     if (a.verb == "save") return save(a.args);
     if (!a.args.empty()) return usage(a.verb, "(no arguments)");
@@ -206,6 +215,29 @@ Result<void> Document::removeOrDuplicate(const std::string& verb, const std::vec
                      : a[0] == "geometry" ? editList(next.geometry, verb, i)
                                           : Result<void>(collectionOf(a[0]).error());
     if (!r) return r;
+    commit(std::move(next));
+    return {};
+}
+
+template <class T>
+Result<void> setHidden(std::vector<T>& list, size_t i, bool hidden) {
+    if (i >= list.size())
+        return Error{"There is no element " + std::to_string(i) + " (the list has " + std::to_string(list.size()) + ")."};
+    list[i].hidden = hidden;
+    return {};
+}
+
+Result<void> Document::hide(const std::string& verb, const std::vector<std::string>& a) {
+    size_t i = 0;
+    if (a.size() != 2 || !parseIndex(a[1], i)) return usage(verb, "volume|light|geometry INDEX");
+    Scene next = scene_;
+    const bool h = verb == "hide";
+    Result<void> r = a[0] == "volume" ? setHidden(next.volumes, i, h)
+                     : a[0] == "light" ? setHidden(next.lights, i, h)
+                     : a[0] == "geometry" ? setHidden(next.geometry, i, h)
+                                          : Result<void>(collectionOf(a[0]).error());
+    if (!r) return r;
+    if (next == scene_) return {};  // hiding a hidden object is not an undo step
     commit(std::move(next));
     return {};
 }

@@ -36,7 +36,8 @@ public:
     const Scene& scene() const { return scene_; }
     const std::string& path() const { return path_; }
     // Whether the scene differs from the last one saved or loaded (undoing back to it is clean).
-    bool dirty() const { return !(scene_ == saved_); }
+    // Hiding is not saved, so it does not make the scene dirty.
+    bool dirty() const;
     // Increases with every change (edits, undo, redo); renderers and autosave compare it.
     uint64_t revision() const { return revision_; }
     bool canUndo() const { return !undo_.empty(); }
@@ -45,6 +46,7 @@ public:
     // Applies one document action; an error leaves the document unchanged. Verbs:
     //   add volume|light|geometry TYPE [NAME]     (vdb: add volume vdb NAME FILE)
     //   delete|duplicate KIND INDEX, rename KIND INDEX NAME   (KIND: volume, light, geometry)
+    //   hide|show KIND INDEX   (editor view state: undoable, never saved, see Volume::hidden)
     //   set PATH VALUE...   (PATH like volumes[0].transform.translation; vec3 takes 3 numbers)
     //   begin, end          (everything in between is one undo step)
     //   undo, redo, save [PATH]   (save PATH is Save As; atomic)
@@ -63,6 +65,7 @@ private:
     Result<void> add(const std::vector<std::string>& a);
     Result<void> removeOrDuplicate(const std::string& verb, const std::vector<std::string>& a);
     Result<void> rename(const std::vector<std::string>& a);
+    Result<void> hide(const std::string& verb, const std::vector<std::string>& a);
     Result<void> set(const std::vector<std::string>& a);
     Result<void> save(const std::vector<std::string>& a);
     void commit(Scene next);

@@ -8,6 +8,7 @@
 
 #include "core/quality.h"
 #include "tonemap.h"
+#include "view.h"
 
 namespace brume::editor {
 namespace {
@@ -70,6 +71,7 @@ Result<void> Editor::dispatch(const Action& a) {
         return {};
     }
     if (a.verb == "orbit" || a.verb == "pan" || a.verb == "zoom") return camera(a);
+    if (a.verb == "fly" || a.verb == "look" || a.verb == "frame" || a.verb == "pick") return viewAction(a);
     if (a.verb == "quality") {
         Quality q;
         if (a.args.size() != 1 || !parseQuality(a.args[0], q)) return Error{"quality takes one of: low, medium, high, ultra."};
@@ -136,16 +138,55 @@ Result<void> Editor::camera(const Action& a) {
     return setCamera(c);
 }
 
+static const char* kindWord(Kind k) {
+    return k == Kind::Volume ? "volume" : k == Kind::Light ? "light" : k == Kind::Geometry ? "geometry" : "none";
+}
+
+// fly RIGHT UP FORWARD [m], look YAW PITCH [deg], frame (the selection), pick U V (window
+// fractions from the top-left; selects what is under it, or nothing).
+Result<void> Editor::viewAction(const Action& a) {
+    std::vector<float> n;
+    for (const std::string& w : a.args) {
+        double x = 0.0;
+        if (!number(w, x)) return Error{a.verb + ": \"" + w + "\" is not a number."};
+        n.push_back(static_cast<float>(x));
+    }
+    const Camera& c = doc_.scene().camera;
+    if (a.verb == "fly") {
+        if (n.size() != 3) return Error{"fly takes: fly RIGHT UP FORWARD (metres)."};
+        return setCamera(flyCamera(c, {n[0], n[1], n[2]}));
+    }
+    if (a.verb == "look") {
+        if (n.size() != 2) return Error{"look takes: look YAW_DEG PITCH_DEG."};
+        return setCamera(lookCamera(c, n[0], n[1]));
+    }
+    if (a.verb == "frame") {
+        if (!n.empty()) return Error{"frame takes no arguments: it frames the selection."};
+        if (selection_.kind == Kind::None) return Error{"Select an object to frame first."};
+        Result<Bounds> b = objectBounds(doc_.scene(), kindWord(selection_.kind), selection_.index);
+        if (!b) return b.error();
+        return setCamera(frameCamera(c, b.value()));
+    }
+    if (n.size() != 2 || n[0] < 0.0f || n[0] > 1.0f || n[1] < 0.0f || n[1] > 1.0f)
+        return Error{"pick takes: pick U V (window fractions in [0, 1] from the top-left)."};
+    const float aspect = viewport_.height > 0 ? static_cast<float>(viewport_.width) / static_cast<float>(viewport_.height)
+                                              : viewAspect;
+    const std::optional<Picked> p = pick(doc_.scene(), aspect, n[0], n[1]);
+    if (!p) selection_.kind = Kind::None;
+    else selection_ = {p->kind == "light" ? Kind::Light : Kind::Volume, p->index};
+    return {};
+}
+
 Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
-    const bool sizeChanged = viewport_.width != width || viewport_.height != height;
-    if (!force && !sizeChanged && renderedRevision_ == doc_.revision() && renderedQuality_ == quality_) return {};
+    const ViewKey key{doc_.revision(), quality_, width, height};
+    if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
     RenderRequest request;
     request.width = width;
     request.height = height;
     request.quality = quality_;
-    Result<gpu::GpuRender> out = renderer.render(doc_.scene(), request);
-    renderedRevision_ = doc_.revision();
-    renderedQuality_ = quality_;
+    request.history = HistoryMode::Continue;
+    Result<gpu::GpuRender> out = renderer.render(visibleScene(doc_.scene()), request);
+    accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
     if (!out) return out.error();
     viewport_.width = width;
     viewport_.height = height;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "accumulation.h"
 #include "autosave.h"
 #include "document.h"
 #include "gpu/gpu_renderer.h"
@@ -35,6 +36,8 @@ public:
     // Every action goes through here. Editor verbs (the rest are Document's):
     //   select volume|light|geometry INDEX | select none
     //   orbit YAW_DEG PITCH_DEG, pan RIGHT UP (fractions of the target distance), zoom FACTOR
+    //   fly RIGHT UP FORWARD [m], look YAW_DEG PITCH_DEG (fly camera), frame (the selection),
+    //   pick U V (select the volume or light under window fractions U, V from the top-left)
     //   quality low|medium|high|ultra (the viewport's preset; not saved in the scene)
     //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
     Result<void> run(const Action& action);
@@ -46,8 +49,11 @@ public:
     Selection& selection() { return selection_; }
     Quality quality() const { return quality_; }
 
-    // Renders when the document, quality or size changed since the last render (or `force`).
+    // Renders when the document, quality or size changed since the last render, or while the
+    // temporal accumulation of a resting view has not converged (or always with `force`), with the
+    // renderer's history carried on (see accumulation.h).
     Result<void> renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force);
+    const Accumulation& accumulation() const { return accumulation_; }
     const Rgba8& viewport() const { return viewport_; }
     const std::optional<gpu::GpuRender>& lastRender() const { return last_; }
 
@@ -62,10 +68,12 @@ public:
     double waitSeconds = 0.0;
     std::string screenshotRequest;
     double frameMs = 0.0;
+    float viewAspect = 16.0f / 9.0f;  // for pick before the first render
 
 private:
     Result<void> dispatch(const Action& a);
     Result<void> camera(const Action& a);
+    Result<void> viewAction(const Action& a);
     Result<void> setCamera(const Camera& c);
 
     Document doc_;
@@ -74,8 +82,7 @@ private:
     Quality quality_;
     Rgba8 viewport_;
     std::optional<gpu::GpuRender> last_;
-    uint64_t renderedRevision_ = ~uint64_t(0);
-    Quality renderedQuality_ = Quality::Low;
+    Accumulation accumulation_;
     std::deque<Notification> notifications_;
 };
 

@@ -1,5 +1,6 @@
 #include "ui.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/settings.h"
+#include "gizmo.h"
+#include "view.h"
 #include "io/scene_json.h"
 
 namespace brume::editor {
@@ -159,12 +162,21 @@ void inspector(Editor& e, double now) {
     ImGui::End();
 }
 
+bool isHidden(const Scene& s, Kind kind, size_t i) {
+    return kind == Kind::Volume ? s.volumes[i].hidden : kind == Kind::Light ? s.lights[i].hidden : s.geometry[i].hidden;
+}
+
 void outlinerList(Editor& e, Kind kind, const std::vector<std::string>& names, const char* types, double now) {
     const char* kn = kindName(kind);
     if (!ImGui::CollapsingHeader(collectionName(kind), ImGuiTreeNodeFlags_DefaultOpen)) return;
     for (size_t i = 0; i < names.size(); ++i) {
         ImGui::PushID(static_cast<int>(i) + 1000 * static_cast<int>(kind));
         const bool selected = e.selection().kind == kind && e.selection().index == i;
+        const std::string target = std::string(kn) + " " + std::to_string(i);
+        bool visible = !isHidden(e.doc().scene(), kind, i);
+        if (ImGui::Checkbox("##visible", &visible)) runOrNotify(e, (visible ? "show " : "hide ") + target, now);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Shown in the viewport (H hides the selection; not saved).");
+        ImGui::SameLine();
         if (ImGui::Selectable(names[i].c_str(), selected)) runOrNotify(e, "select " + std::string(kn) + " " + std::to_string(i), now);
         if (ImGui::BeginPopupContextItem()) {
             if (ImGui::MenuItem("Duplicate")) runOrNotify(e, "duplicate " + std::string(kn) + " " + std::to_string(i), now);
@@ -221,6 +233,9 @@ void stats(Editor& e, UiState& ui, double now) {
     if (ImGui::Combo("quality", &q, names, 4)) runOrNotify(e, std::string("quality ") + names[q], now);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Froxel preset of the viewport (docs/quality.md); not saved in the scene.");
     ImGui::Text("frame %.1f ms", e.frameMs);
+    const int converged = convergedFrames(e.doc().scene());
+    ImGui::Text("temporal %d / %d frames%s", std::min(e.accumulation().frames(), converged), converged,
+                e.accumulation().frames() >= converged ? " (converged)" : "");
     if (const auto& r = e.lastRender()) {
         ImGui::Text("render wall %.1f ms", r->wallMs);
         ImGui::Text("froxels %dx%dx%d", r->dims.x, r->dims.y, r->dims.z);
@@ -235,7 +250,12 @@ void help(UiState& ui) {
     ImGui::Begin("Help", &ui.showHelp, ImGuiWindowFlags_AlwaysAutoResize);
     const char* lines[][2] = {
         {"Left drag (viewport)", "orbit the camera around its target"},
-        {"Right or middle drag", "pan"},
+        {"Left click (viewport)", "select the volume or light under the cursor"},
+        {"Right drag", "look around (fly); with W A S D / Q E flies"},
+        {"Middle or Shift+left drag", "pan"},
+        {"W A S D, Q E (Shift: 4x)", "fly forward, left, back, right, down, up"},
+        {"F", "frame the selection"},
+        {"H / Alt+H", "hide the selection / show everything"},
         {"Mouse wheel", "zoom"},
         {"Ctrl+Z / Ctrl+Shift+Z, Ctrl+Y", "undo / redo (a drag is one step)"},
         {"Ctrl+S", "save (atomic); File > Save As for a new path"},
@@ -351,6 +371,37 @@ void drawUi(Editor& e, UiState& ui, double now) {
     prompts(e, ui, now);
 }
 
+namespace {
+
+// Alt+H: every hidden object shown again, as one undo step.
+void showAll(Editor& e, double now) {
+    const Scene s = e.doc().scene();
+    (void)e.run("begin");
+    for (size_t i = 0; i < s.volumes.size(); ++i) if (s.volumes[i].hidden) runOrNotify(e, "show volume " + std::to_string(i), now);
+    for (size_t i = 0; i < s.lights.size(); ++i) if (s.lights[i].hidden) runOrNotify(e, "show light " + std::to_string(i), now);
+    for (size_t i = 0; i < s.geometry.size(); ++i) if (s.geometry[i].hidden) runOrNotify(e, "show geometry " + std::to_string(i), now);
+    (void)e.run("end");
+}
+
+// W A S D / Q E fly at 2 m/s (Shift: 8); holding them is one undo step, like a drag.
+void flyKeys(Editor& e, UiState& ui, double now) {
+    ImGuiIO& io = ImGui::GetIO();
+    if (io.KeyCtrl) return;
+    auto down = [](int key) { return ImGui::IsKeyDown(key) ? 1.0f : 0.0f; };
+    const glm::vec3 dir{down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+                        down(GLFW_KEY_W) - down(GLFW_KEY_S)};
+    const bool held = ImGui::IsKeyDown(GLFW_KEY_W) || ImGui::IsKeyDown(GLFW_KEY_A) || ImGui::IsKeyDown(GLFW_KEY_S) ||
+                      ImGui::IsKeyDown(GLFW_KEY_D) || ImGui::IsKeyDown(GLFW_KEY_Q) || ImGui::IsKeyDown(GLFW_KEY_E);
+    if (held && !ui.flying) (void)e.run("begin");
+    if (!held && ui.flying) (void)e.run("end");
+    ui.flying = held;
+    if (glm::length(dir) == 0.0f) return;
+    const glm::vec3 step = dir * (2.0f * (io.KeyShift ? 4.0f : 1.0f) * io.DeltaTime);
+    runOrNotify(e, "fly " + fmt(step.x) + " " + fmt(step.y) + " " + fmt(step.z), now);
+}
+
+}  // namespace
+
 void handleViewportInput(Editor& e, UiState& ui, double now) {
     ImGuiIO& io = ImGui::GetIO();
     if (!io.WantCaptureKeyboard) {
@@ -364,18 +415,29 @@ void handleViewportInput(Editor& e, UiState& ui, double now) {
         if (ImGui::IsKeyPressed(GLFW_KEY_DELETE) && !target.empty()) runOrNotify(e, "delete " + target, now);
         if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) runOrNotify(e, "select none", now);
         if (ImGui::IsKeyPressed(GLFW_KEY_F1)) ui.showHelp = !ui.showHelp;
+        if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F) && !target.empty()) runOrNotify(e, "frame", now);
+        if (!ctrl && !io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H) && !target.empty()) runOrNotify(e, "hide " + target, now);
+        if (!ctrl && io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H)) showAll(e, now);
     }
-    if (io.WantCaptureMouse) return;
-    // A drag is one undo step: begin on press, end on release.
+    if (!io.WantCaptureKeyboard) flyKeys(e, ui, now);
+    // Drawn even under the panels; it takes the mouse only when ImGui does not want it.
+    if (translateGizmo(e, ui.gizmo, now) || io.WantCaptureMouse) return;
+    // A drag is one undo step: begin on press, end on release. A click that did not move picks.
     for (int b = 0; b < 3; ++b) {
         if (ImGui::IsMouseClicked(b)) (void)e.run("begin");
         if (ImGui::IsMouseReleased(b)) (void)e.run("end");
     }
+    const ImVec2 w = io.DisplaySize;
+    if (ImGui::IsMouseReleased(0) && io.MouseDragMaxDistanceSqr[0] < 9.0f && w.x > 0 && w.y > 0)
+        runOrNotify(e, "pick " + fmt(io.MousePos.x / w.x) + " " + fmt(io.MousePos.y / w.y), now);
     const ImVec2 d = io.MouseDelta;
     const float h = std::max(1.0f, io.DisplaySize.y);
-    if ((d.x != 0.0f || d.y != 0.0f) && ImGui::IsMouseDown(0))
+    const bool moved = d.x != 0.0f || d.y != 0.0f;
+    if (moved && ImGui::IsMouseDown(0) && !io.KeyShift)
         runOrNotify(e, "orbit " + fmt(-d.x * 0.3) + " " + fmt(d.y * 0.3), now);
-    else if ((d.x != 0.0f || d.y != 0.0f) && (ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2)))
+    else if (moved && ImGui::IsMouseDown(1))
+        runOrNotify(e, "look " + fmt(-d.x * 0.2) + " " + fmt(-d.y * 0.2), now);
+    else if (moved && (ImGui::IsMouseDown(2) || ImGui::IsMouseDown(0)))
         runOrNotify(e, "pan " + fmt(-d.x / h) + " " + fmt(d.y / h), now);
     if (io.MouseWheel != 0.0f) runOrNotify(e, "zoom " + fmt(std::pow(0.9, io.MouseWheel)), now);
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "editor.h"
+#include "gizmo.h"
 
 namespace brume::editor {
 
@@ -11,7 +12,9 @@ struct UiState {
     bool showStats = true;
     bool showHelp = false;
     bool closeRequested = false;   // the window's close button with unsaved changes: ask first
-    bool closeConfirmed = false;   // the user chose Save or Discard
+    bool closeConfirmed = false;
+    GizmoState gizmo;
+    bool flying = false;           // a fly key is held: its moves are one undo step   // the user chose Save or Discard
     std::string recoveryPath;      // non-empty: offer to recover this autosave
     char saveAsPath[512] = {};
 };

@@ -1,0 +1,27 @@
+#include "accumulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brume::editor {
+
+int convergedFrames(const Scene& scene) {
+    const double w = scene.temporal.enabled ? static_cast<double>(scene.temporal.history_weight) : 0.0;
+    if (w <= 0.0) return 1;
+    // w^n < 0.05; history_weight <= 0.99 (core/settings.h) caps this at 299 frames, 64 keeps a
+    // weight-0.99 scene from churning for minutes on a CPU device.
+    const double n = std::ceil(std::log(0.05) / std::log(w));
+    return std::clamp(static_cast<int>(n), 1, 64);
+}
+
+bool Accumulation::wantsFrame(const ViewKey& key, const Scene& scene, bool force) const {
+    if (force || !(key == key_)) return true;
+    return frames_ < convergedFrames(scene);
+}
+
+void Accumulation::rendered(const ViewKey& key) {
+    frames_ = key == key_ ? frames_ + 1 : 1;
+    key_ = key;
+}
+
+}  // namespace brume::editor

@@ -1,0 +1,43 @@
+// When the viewport re-renders. While the view rests (same document revision, preset and size) the
+// editor keeps rendering with the GPU history carried on (HistoryMode::Continue), so temporal
+// accumulation converges on screen, and stops once it has: after convergedFrames() frames the
+// first frame's share of the blend is below 5%, and more frames only trade flicker for flicker.
+// Any change starts the count again; the renderer itself decides whether its history survives it
+// (temporalSceneKey drops it on media, light, grid or temporal edits; camera moves reproject it).
+#pragma once
+
+#include <cstdint>
+
+#include "core/quality.h"
+#include "core/scene.h"
+
+namespace brume::editor {
+
+// What the viewport shows; a different key is a change.
+struct ViewKey {
+    uint64_t revision = ~uint64_t(0);
+    Quality quality = Quality::Low;
+    int width = 0;
+    int height = 0;
+    bool operator==(const ViewKey&) const = default;
+};
+
+// Frames after which an exponential blend with weight `temporal.history_weight` keeps less than
+// 5% of its first frame (1 when temporal is off: every frame would be the same).
+int convergedFrames(const Scene& scene);
+
+class Accumulation {
+public:
+    // Whether the next frame should be rendered (`force`: always, as --frames does to time frames).
+    bool wantsFrame(const ViewKey& key, const Scene& scene, bool force) const;
+    // Records a rendered frame of `key`.
+    void rendered(const ViewKey& key);
+    // Frames rendered since the last change (the one the viewport shows counts).
+    int frames() const { return frames_; }
+
+private:
+    ViewKey key_;
+    int frames_ = 0;
+};
+
+}  // namespace brume::editor
