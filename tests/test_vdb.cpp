@@ -418,10 +418,11 @@ TEST_F(Vdb, GpuRenderDrawsVdbVolumesLikeTheCpu) {
     const std::string bytes = readBytes(real("gaffer_arnold_sphere.vdb"));
     writeBytes(dir_ / "sphere.vdb", bytes);
     writeBytes(dir_ / "scene.json",
-               R"({"brume_scene": 1, "volumes": [{"type": "vdb", "name": "puff", "file": "sphere.vdb"}]})");
+               R"({"brume_scene": 1, "camera": {"position": [0, 2, 5], "target": [0, 2, 0]}, "ambient": [0.2, 0.2, 0.2],
+                   "volumes": [{"type": "vdb", "name": "puff", "file": "sphere.vdb", "medium": {"emission": [1, 0.5, 0.2]}}]})");
     for (const std::string renderer : {"gpu", "cpu"}) {
         const std::string cmd = "cd '" + dir_.string() + "' && '" + BRUME_EXE + "' render scene.json -o " + renderer +
-                                ".exr --width 32 --height 18" + (renderer == "cpu" ? " --cpu" : "") +
+                                ".exr --width 64 --height 36" + (renderer == "cpu" ? " --cpu" : "") +
                                 " >/dev/null 2>err.txt";
         const int status = std::system(cmd.c_str());
         ASSERT_TRUE(WIFEXITED(status));
