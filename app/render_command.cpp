@@ -238,16 +238,6 @@ CommandResult runRender(const RenderOptions& o) {
     const RendererKind kind =
         o.reference ? RendererKind::Reference : (o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu);
     RenderRequest request = requestFromOptions(scene.value(), o);
-    // Until the voxelize shader samples NanoVDB (issue: OpenVDB import), say so rather than show
-    // an empty volume without a word.
-    if (kind == RendererKind::Gpu) {
-        for (const Volume& v : scene.value().volumes) {
-            if (v.type != VolumeType::Vdb) continue;
-            std::fprintf(stderr, "warning: %s: volume '%s' is a vdb volume, which the GPU renderer does not draw yet; "
-                         "use --cpu or --reference to see it\n", o.scenePath.c_str(), v.name.c_str());
-        }
-    }
-
     ProgressLine progress(std::string("rendering (") + rendererName(kind) + ")");
     request.progress = [&progress](float f) { progress.update(f); };
     RenderSession session(kind, o.device);

@@ -13,7 +13,10 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <memory>
+#include <vector>
 
+#include "core/density_grid.h"
 #include "resources.h"
 
 namespace brume::gpu {
@@ -42,6 +45,12 @@ struct FrameResources {
     // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims cells per light.
     glm::ivec3 shadowExtent{0};  // cells x, y and z * lights: the shadow volume pass's dispatch
     Buffer shadowTransmittance;  // vec4[], at least one entry
+
+    // Every vdb volume's NanoVDB grid back to back (compileScene's order and offsets), sparse as
+    // imported: GPU memory is the NanoVDB size. Re-uploaded only when the set of grids changes.
+    Buffer vdbGrids;                // uint[], at least 32 bytes
+    // The grids it holds, in order; held so that a new grid cannot reuse a freed one's address.
+    std::vector<std::shared_ptr<const DensityGrid>> vdbGridsUploaded;
 
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage

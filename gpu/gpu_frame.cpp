@@ -155,6 +155,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            std::max<size_t>(cs.lights.size(), 1);
     BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
                            "shadow transmittance", dirty));
+    BRUME_TRY(ensureVdbGrids(cs, dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }

@@ -41,6 +41,7 @@ struct GpuRenderer::State {
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
+    Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,

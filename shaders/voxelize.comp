@@ -1,8 +1,10 @@
-// Pass 1: media of every analytic volume at each froxel's sample point (core: voxelizeRow).
+// Pass 1: media of every volume at each froxel's sample point (core: voxelizeRow); vdb volumes
+// sample their NanoVDB grid (vdb_sample.glsl).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
+#include "vdb_sample.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
@@ -10,7 +12,9 @@ MediaSample mediaAt(vec3 p) {
     MediaSample m = emptyMedia();
     for (int i = 0; i < frame.counts.z; ++i) {
         if (!insideBounds(volumes[i], p)) continue;
-        m = addMedium(m, volumes[i], analyticDensity(volumes[i], p, frame.cameraPosition.xyz));
+        float density = volumes[i].kind.x == VOLUME_VDB ? vdbDensity(volumes[i], p)
+                                                        : analyticDensity(volumes[i], p, frame.cameraPosition.xyz);
+        m = addMedium(m, volumes[i], density);
     }
     return m;
 }

@@ -1,0 +1,53 @@
+// The vdb grid buffer (BINDING_VDB_GRIDS): every vdb volume's NanoVDB grid uploaded as is, back to
+// back at the offsets compileScene wrote into VolumeData.kind.y. No dense copy: GPU memory is the
+// sum of the NanoVDB sizes (exactly; no geometric growth as for the other buffers).
+#include <cstring>
+#include <string>
+
+#include "renderer_state.h"
+#include "vk_check.h"
+
+namespace brume::gpu {
+namespace {
+
+std::string mib(VkDeviceSize bytes) {
+    return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& dirty) {
+    std::vector<DensityGridPtr> grids;
+    VkDeviceSize total = 0;
+    for (const DensityGridPtr& g : cs.grids) {
+        if (!g) continue;
+        grids.push_back(g);
+        total += g->size();
+    }
+    if (res.vdbGrids.buffer && grids == res.vdbGridsUploaded) return {};
+    // One binding addresses the whole buffer; lavapipe allows 128 MiB (its maxStorageBufferRange).
+    const VkDeviceSize limit = device->limits().maxStorageBufferRange;
+    if (total > limit)
+        return Error{"The scene's vdb grids take " + mib(total) + " as NanoVDB, more than the " + mib(limit) +
+                     " one GPU storage buffer can address on this device; use fewer or smaller grids."};
+    const VkDeviceSize size = std::max<VkDeviceSize>(total, 32);
+    if (!res.vdbGrids.buffer || res.vdbGrids.size != size) {
+        res.vdbGrids = Buffer{};
+        Result<Buffer> b = createBuffer(*device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::Upload, "vdb grids");
+        if (!b) return b.error();
+        res.vdbGrids = std::move(b.value());
+        dirty = true;
+    }
+    // The previous frame has completed (render() waits on its fence), so the buffer is free to write.
+    auto* dst = static_cast<std::byte*>(res.vdbGrids.mapped);
+    size_t offset = 0;
+    for (const DensityGridPtr& g : cs.grids) {
+        if (!g) continue;
+        std::memcpy(dst + offset, g->data(), g->size());
+        offset += g->size();
+    }
+    res.vdbGridsUploaded = std::move(grids);
+    return {};
+}
+
+}  // namespace brume::gpu

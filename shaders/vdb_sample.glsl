@@ -1,0 +1,29 @@
+// Grid sampling of vdb volumes with PNanoVDB (core: DensityGrid::sampleIndex through NanoVDB): the
+// same 8 voxels of shared/vdb.h's vdbCell, mixed by the same vdbTrilinear, read from the very bytes
+// the CPU samples (BINDING_VDB_GRIDS holds them back to back; VolumeData.kind.y is a grid's offset).
+layout(std430, set = 0, binding = BINDING_VDB_GRIDS) readonly buffer VdbGridBlock { uint vdbGridWords[]; };
+
+#define PNANOVDB_GLSL
+#define pnanovdb_buf_data vdbGridWords
+#include "nanovdb/PNanoVDB.h"
+
+float vdbVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
+    return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
+}
+
+// Density of vdb volume v at a world position, without bounds test (core: volumeDensity).
+float vdbDensity(VolumeData v, vec3 worldPos) {
+    if (v.kind.z == 0) return 0.0f;
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // GLSL's PNanoVDB reads the global vdbGridWords
+    pnanovdb_grid_handle_t grid;
+    grid.address.byte_offset = uint(v.kind.y);
+    pnanovdb_readaccessor_t acc;
+    pnanovdb_readaccessor_init(acc, pnanovdb_tree_get_root(buf, pnanovdb_grid_get_tree(buf, grid)));
+    VdbCell c = vdbCell(vdbIndexPos(v, worldPos));
+    ivec3 b = c.base;
+    vec4 lo = vec4(vdbVoxel(buf, acc, b), vdbVoxel(buf, acc, b + ivec3(1, 0, 0)), vdbVoxel(buf, acc, b + ivec3(0, 1, 0)),
+                   vdbVoxel(buf, acc, b + ivec3(1, 1, 0)));
+    vec4 hi = vec4(vdbVoxel(buf, acc, b + ivec3(0, 0, 1)), vdbVoxel(buf, acc, b + ivec3(1, 0, 1)),
+                   vdbVoxel(buf, acc, b + ivec3(0, 1, 1)), vdbVoxel(buf, acc, b + ivec3(1, 1, 1)));
+    return v.params.x * vdbTrilinear(lo, hi, c.frac);
+}
