@@ -43,6 +43,10 @@ struct FrameResources {
     glm::ivec3 shadowExtent{0};  // cells x, y and z * lights: the shadow volume pass's dispatch
     Buffer shadowTransmittance;  // vec4[], at least one entry
 
+    // Light lists per cluster (shaders/shared/clusters.h), built on the CPU (core/clusters.cpp) and
+    // uploaded each frame: 256 B per 8^3 froxels, 720 KiB at 1280x720 High.
+    Buffer lightClusters;  // int[]
+
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage
     GpuImage sceneDepth;   // r32f view depth, colour attachment 1 and storage

@@ -31,7 +31,9 @@ BRUME_CONST int BINDING_SHADOW_TRANSMITTANCE = 18;  // storage vec4[]: fog trans
                                                      // (shadow_volume.h shadowVolumeIndex); a buffer, not an
                                                      // image: lavapipe's imageLoad is ~3x dearer, and the
                                                      // geometry pass may read it
-BRUME_CONST int BINDING_COUNT = 19;
+BRUME_CONST int BINDING_LIGHT_CLUSTERS = 19;  // storage int[]: light lists per cluster (clusters.h), uploaded
+                                               // from core/clusters.cpp each frame
+BRUME_CONST int BINDING_COUNT = 20;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {
