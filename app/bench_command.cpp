@@ -36,6 +36,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
                     "Untimed renders first (the first dispatch pays shader compilation). Default: 3. Range: 0..1000.")
         ->check(CLI::Range(0, 1000));
     cmd->add_flag("--cpu", o.cpu, "Time the CPU froxel renderer instead of the GPU. Default: off.");
+    cmd->add_flag("--no-light-culling", o.noLightCulling,
+                  "Light pass loops over every light, not its cluster's list (to measure culling). Default: off.");
     cmd->add_option("--device", o.device, "GPU renderer: Vulkan device whose name contains this text. Default: automatic.");
     return cmd;
 }
@@ -55,6 +57,7 @@ CommandResult runBench(const BenchOptions& o) {
     if (o.qualityOption->count() > 0 && !parseQuality(o.quality, request.quality)) {
         return badInput("--quality '" + o.quality + "' is not one of " + std::string(settings::render_quality.choices) + ".");
     }
+    request.lightCulling = !o.noLightCulling;
     const RendererKind kind = o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu;
 
     // One session for every frame: what an editor pays per frame, not per start-up; the frames form
@@ -99,6 +102,7 @@ CommandResult runBench(const BenchOptions& o) {
     std::printf("lit froxels %zu, skipped %zu (%.1f%% skipped)\n", last.litFroxels, last.skippedFroxels,
                 100.0 * static_cast<double>(last.skippedFroxels) /
                     static_cast<double>(std::max<size_t>(1, last.litFroxels + last.skippedFroxels)));
+    printClusterWarning(o.scenePath, last);
     return success();
 }
 

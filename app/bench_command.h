@@ -18,6 +18,7 @@ struct BenchOptions {
     int frames = 20;
     int warmup = 3;
     bool cpu = false;
+    bool noLightCulling = false;
     std::string device;
     CLI::Option* widthOption = nullptr;
     CLI::Option* heightOption = nullptr;

@@ -77,6 +77,7 @@ std::variant<RenderOutput, RenderFailure> RenderSession::render(const Scene& sce
             out.stats.froxelDims = r.value().dims;
             out.stats.litFroxels = r.value().litFroxels;
             out.stats.skippedFroxels = r.value().skippedFroxels;
+            out.stats.overfullClusters = r.value().overfullClusters;
 #endif
             break;
         }
@@ -86,6 +87,7 @@ std::variant<RenderOutput, RenderFailure> RenderSession::render(const Scene& sce
             out.stats.froxelDims = r.volumes.dims;
             out.stats.litFroxels = r.volumes.litFroxels;
             out.stats.skippedFroxels = r.volumes.skippedFroxels;
+            out.stats.overfullClusters = r.volumes.overfullClusters;
             break;
         }
         case RendererKind::Reference: out.image = renderReference(scene, request); break;
@@ -110,6 +112,7 @@ Result<void> writeStatsJson(const std::string& path, RendererKind kind, const Re
         j["froxels"] = {stats.froxelDims.x, stats.froxelDims.y, stats.froxelDims.z};
         j["lit_froxels"] = stats.litFroxels;
         j["skipped_froxels"] = stats.skippedFroxels;
+        j["overfull_light_clusters"] = stats.overfullClusters;
     }
     return writeTextFileAtomic(path, j.dump(2) + "\n");
 }
@@ -229,6 +232,16 @@ static std::variant<RenderOutput, RenderFailure> renderFrames(RenderSession& ses
     }
 }
 
+// Over-full clusters cost time, not correctness: say which limit and what it costs.
+void printClusterWarning(const std::string& scenePath, const RenderStats& stats) {
+    if (stats.overfullClusters == 0) return;
+    std::fprintf(stderr,
+                 "warning: %s: %zu light clusters are reached by more than %d lights; their froxels loop over every "
+                 "light (the image is unchanged, the light pass is slower); shorten the lights' ranges or narrow "
+                 "their cones (docs/gpu.md, Light clusters)\n",
+                 scenePath.c_str(), stats.overfullClusters, shd::CLUSTER_MAX_LIGHTS);
+}
+
 CommandResult runRender(const RenderOptions& o) {
     if (auto e = checkOptions(o)) return *e;
     Result<Scene> scene = loadSceneFile(o.scenePath);
@@ -248,6 +261,7 @@ CommandResult runRender(const RenderOptions& o) {
     }
     RenderOutput& out = std::get<RenderOutput>(result);
     progress.complete();
+    printClusterWarning(o.scenePath, out.stats);
     // Never write an image a viewer or compositor would choke on: NaN is a renderer bug.
     if (!allFinite(out.image)) {
         return internalFailure(std::string("the ") + rendererName(kind) + " renderer produced non-finite pixels; " +

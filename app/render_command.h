@@ -32,6 +32,7 @@ struct RenderStats {
     glm::ivec3 froxelDims{0};      // froxel renderers
     size_t litFroxels = 0;
     size_t skippedFroxels = 0;
+    size_t overfullClusters = 0;   // light clusters over shd::CLUSTER_MAX_LIGHTS (core/clusters.h)
 };
 
 struct RenderOutput {
@@ -68,6 +69,9 @@ private:
 };
 
 // Writes --stats JSON atomically.
+// Prints on stderr that some light clusters were over-full (nothing when none were).
+void printClusterWarning(const std::string& scenePath, const RenderStats& stats);
+
 Result<void> writeStatsJson(const std::string& path, RendererKind kind, const RenderRequest& request,
                             const RenderStats& stats);
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "clusters.h"
 #include "froxel_frame.h"
 #include "geometry.h"
 #include "parallel.h"
@@ -46,7 +47,8 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
 
 // Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
 // light + ambient) + emission. Returns how many froxels of the row were lit.
-size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& v, int y, int s) {
+size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClusters& clusters, FroxelVolumes& v, int y,
+                int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
         const size_t i = froxelIndex(v.dims, x, y, s);
@@ -64,7 +66,12 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& 
         vec3 perSigmaS = vec3(v.frame.ambient);
         const shd::ShadowLookup shadow = shd::shadowLookup(ivec3(x, y, s), v.dims, sv.reduction);
         const float nearest = shd::FROXEL_LIGHT_CLAMP * shd::froxelRadius(s, v.frame);
-        for (size_t li = 0; li < cs.lights.size(); ++li) {
+        // Only the lights of this froxel's cluster (core/clusters.h), in the GPU's order.
+        const int* cluster = &clusters.records[static_cast<size_t>(shd::clusterRecord(ivec3(x, y, s), v.dims))];
+        const bool all = cluster[0] == shd::CLUSTER_ALL_LIGHTS;
+        const size_t count = all ? cs.lights.size() : static_cast<size_t>(cluster[0]);
+        for (size_t k = 0; k < count; ++k) {
+            const size_t li = all ? k : static_cast<size_t>(cluster[1 + k]);
             const shd::LightData& l = cs.lights[li];
             const shd::LightSample ls = shd::evalLightNear(l, p, nearest);
             const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
@@ -185,11 +192,15 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     progress.finishedPass(rows);
 
     const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
+    const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
+    v.overfullClusters = clusters.overfullClusters;
 
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
     parallelFor(rows, threads,
-                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, v, r % v.dims.y, r / v.dims.y); },
+                [&](int r) {
+                    litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, clusters, v, r % v.dims.y, r / v.dims.y);
+                },
                 report);
     progress.finishedPass(rows);
     for (size_t lit : litPerRow) v.litFroxels += lit;

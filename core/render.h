@@ -26,6 +26,7 @@ struct RenderRequest {
     HistoryMode history = HistoryMode::Restart;  // froxel renderers: keep the previous call's history?
     int threads = 0;       // 0 = every core
     int shadowReduction = 0;  // fog transmittance volume reduction (core/shadows.h); 0 = the quality's
+    bool lightCulling = true;  // froxel renderers: light pass loops over its cluster's lights (core/clusters.h)
     ProgressFn progress;   // optional
 };
 
@@ -47,6 +48,7 @@ struct FroxelVolumes {
     std::vector<glm::vec4> integratedTransmittance;  // integrate: rgb transmittance, likewise
     size_t litFroxels = 0;      // froxels with sigma_t > 0 (lit)
     size_t skippedFroxels = 0;  // froxels with sigma_t = 0 (lighting skipped)
+    size_t overfullClusters = 0;  // light clusters over shd::CLUSTER_MAX_LIGHTS (unculled there)
 };
 
 struct FroxelResult {

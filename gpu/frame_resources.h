@@ -51,6 +51,9 @@ struct FrameResources {
     Buffer vdbGrids;                // uint[], at least 32 bytes
     // The grids it holds, in order; held so that a new grid cannot reuse a freed one's address.
     std::vector<std::shared_ptr<const DensityGrid>> vdbGridsUploaded;
+    // Light lists per cluster (shaders/shared/clusters.h), built on the CPU (core/clusters.cpp) and
+    // uploaded each frame: 256 B per 8^3 froxels, 720 KiB at 1280x720 High.
+    Buffer lightClusters;  // int[]
 
     glm::ivec2 size{0};
     GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage

@@ -14,6 +14,11 @@ VkExtent3D extentOf(glm::ivec3 d) {
     return {static_cast<uint32_t>(d.x), static_cast<uint32_t>(d.y), static_cast<uint32_t>(d.z)};
 }
 
+int clusterCount(glm::ivec3 froxelDims) {
+    const glm::ivec3 c = shd::clusterDims(froxelDims);
+    return c.x * c.y * c.z;
+}
+
 std::array<const GpuImage*, 6> froxelImages(const FrameResources& r) {
     return {&r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
             &r.integratedTransmittance};
@@ -156,6 +161,9 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
                            "shadow transmittance", dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
+    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(clusterCount(dims));
+    BRUME_TRY(ensureBuffer(res.lightClusters, clusterInts * sizeof(int), storage, Memory::Upload, "light clusters",
+                           dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }

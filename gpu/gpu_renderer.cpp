@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "core/clusters.h"
 #include "core/compile.h"
 #include "core/shadows.h"
 #include "geometry_mesh.h"
@@ -126,6 +127,9 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
     if (!cs.lights.empty()) std::memcpy(r.lights.mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
+    // The clusters do not depend on the jitter: built once for every frame of this call.
+    const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
+    std::memcpy(r.lightClusters.mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
 
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
@@ -166,6 +170,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const auto* counters = static_cast<const shd::FroxelCounters*>(r.counters.mapped);
     out.litFroxels = counters->litFroxels;
     out.skippedFroxels = counters->skippedFroxels;
+    out.overfullClusters = clusters.overfullClusters;
     Result<std::vector<PassTiming>> timings = s_->timer.read();
     if (!timings) return timings.error();
     out.passes = std::move(timings.value());
@@ -178,6 +183,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         for (size_t i = 0; i < dst.size(); ++i) *dst[i] = readVolume(s_->volumeReadback[i], dims);
         v.litFroxels = out.litFroxels;
         v.skippedFroxels = out.skippedFroxels;
+        v.overfullClusters = out.overfullClusters;
     }
     if (request.progress) request.progress(1.0f);
     return out;

@@ -24,6 +24,7 @@ struct GpuRender {
     glm::ivec3 dims{0};              // froxel grid
     size_t litFroxels = 0;           // froxels with sigma_t > 0
     size_t skippedFroxels = 0;       // froxels with sigma_t = 0 (lighting skipped)
+    size_t overfullClusters = 0;     // light clusters over shd::CLUSTER_MAX_LIGHTS (unculled there)
 };
 
 class GpuRenderer {

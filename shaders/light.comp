@@ -26,7 +26,12 @@ void main() {
     vec3 perSigmaS = frame.ambient.rgb;
     ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadows.y);
     float nearest = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
-    for (int i = 0; i < frame.counts.w; ++i) {
+    // Only the lights of this froxel's cluster (clusters.h), in the CPU's order.
+    int record = clusterRecord(id, frame.froxelDims.xyz);
+    bool all = lightClusters[record] == CLUSTER_ALL_LIGHTS;
+    int count = all ? frame.counts.w : lightClusters[record];
+    for (int k = 0; k < count; ++k) {
+        int i = all ? k : lightClusters[record + 1 + k];
         LightSample ls = evalLightNear(lights[i], p, nearest);
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.

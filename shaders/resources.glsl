@@ -9,6 +9,7 @@ layout(std430, set = 0, binding = BINDING_LIGHTS) readonly buffer LightBlock { L
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBlock { FroxelCounters counters; };
 layout(std140, set = 0, binding = BINDING_PREVIOUS_FRAME) uniform PreviousFrameBlock { FrameUniforms previousFrame; };
 layout(std430, set = 0, binding = BINDING_SHADOW_TRANSMITTANCE) buffer ShadowBlock { vec4 shadowTransmittance[]; };
+layout(std430, set = 0, binding = BINDING_LIGHT_CLUSTERS) readonly buffer ClusterBlock { int lightClusters[]; };
 
 #ifdef BRUME_FROXEL_IMAGES
 layout(set = 0, binding = BINDING_MEDIA_SCATTERING, rgba32f) uniform image3D mediaScatteringG;

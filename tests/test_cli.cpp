@@ -365,3 +365,26 @@ TEST_F(CliGpu, FramesAndOrbitMatchTheCpuSequence) {
 }
 
 }  // namespace
+
+// More lights reach a cluster than it lists: the image is still rendered (unculled there) and
+// stderr says how many clusters, the limit and what to do; a scene within the limit gets no warning.
+TEST_F(Cli, OverfullLightClustersWarn) {
+    auto scene = [](int lights) {
+        std::string s = R"({"brume_scene": 1, "camera": {"position": [0, 1.5, 6], "target": [0, 0.5, 0]},
+            "volumes": [{"type": "height", "base_height": 0.5, "falloff": 0.5}], "lights": [)";
+        for (int i = 0; i < lights; ++i) {
+            s += std::string(i ? "," : "") + R"({"type": "point", "intensity": 0.1, "position": [)" +
+                 std::to_string(0.1 * i - 3.0) + ", 1, -2]}";
+        }
+        return s + "]}";
+    };
+    writeText(dir_ / "work" / "many.json", scene(64));
+    writeText(dir_ / "work" / "few.json", scene(4));
+    const CliRun many = brume("render many.json -o many.png --cpu" + kSmall);
+    ASSERT_EQ(many.exitCode, 0) << many.err;
+    EXPECT_NE(many.err.find("warning: many.json: "), std::string::npos) << many.err;
+    EXPECT_NE(many.err.find("reached by more than 63 lights"), std::string::npos) << many.err;
+    const CliRun few = brume("render few.json -o few.png --cpu" + kSmall);
+    ASSERT_EQ(few.exitCode, 0) << few.err;
+    EXPECT_EQ(few.err.find("warning"), std::string::npos) << few.err;
+}

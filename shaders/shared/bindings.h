@@ -33,7 +33,9 @@ BRUME_CONST int BINDING_SHADOW_TRANSMITTANCE = 18;  // storage vec4[]: fog trans
                                                      // geometry pass may read it
 BRUME_CONST int BINDING_VDB_GRIDS = 19;  // storage uint[]: every vdb volume's NanoVDB grid, back to back
                                           // (VolumeData.kind.y: byte offset), read with PNanoVDB
-BRUME_CONST int BINDING_COUNT = 20;
+BRUME_CONST int BINDING_LIGHT_CLUSTERS = 20;  // storage int[]: light lists per cluster (clusters.h), uploaded
+                                               // from core/clusters.cpp each frame
+BRUME_CONST int BINDING_COUNT = 21;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {

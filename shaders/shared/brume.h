@@ -12,5 +12,6 @@
 #include "distant.h"
 #include "shadows.h"
 #include "shadow_volume.h"
+#include "clusters.h"
 #include "tonemap.h"
 #endif
