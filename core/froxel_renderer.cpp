@@ -16,6 +16,7 @@
 #include "progress.h"
 #include "render.h"
 #include "shadows.h"
+#include "sun_shadow.h"
 
 namespace brume {
 namespace {
@@ -45,8 +46,9 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
 }
 
 // Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
-// light + ambient) + emission. Returns how many froxels of the row were lit.
-size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& v, int y, int s) {
+// light x the sun shadow map's visibility + ambient) + emission. Returns how many froxels of the row were lit.
+size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const SunShadowMap& sun, FroxelVolumes& v, int y,
+                int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
         const size_t i = froxelIndex(v.dims, x, y, s);
@@ -71,7 +73,8 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, FroxelVolumes& 
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;
             perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), shadow, p,
-                                                            ls.toLight, ls.distance);
+                                                            ls.toLight, ls.distance) *
+                         sunShadowVisibility(sun, v.frame, static_cast<int>(li), p);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);
@@ -118,8 +121,8 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
 }
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
-void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const FroxelVolumes& v,
-                  Image& img, int y) {
+void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
+                  const FroxelVolumes& v, Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -131,9 +134,11 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         vec3 background = cs.ambient;
         float viewDepth = cameraFar;
         if (hit.hit()) {
-            // The fog's shadow on the surface, as the GPU's geometry pass computes it.
+            // The fog's shadow and the sun shadow map's on the surface, as the GPU's geometry pass
+            // computes them; exact geometry occlusion stays off so that both renderers agree.
             const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
-                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist);
+                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist) *
+                       sunShadowVisibility(sun, v.frame, i, from);
             };
             background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
@@ -172,6 +177,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     FroxelVolumes& v = result.volumes;
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
     applyShadowSettings(frame, request);
+    applySunShadowSettings(frame, cs);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 
@@ -185,11 +191,13 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     progress.finishedPass(rows);
 
     const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
+    const GeometrySet geometry(scene.geometry);
+    const SunShadowMap sun = buildSunShadowMap(cs, geometry, frame, sunShadowMapResolution(request.quality), threads);
 
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
     parallelFor(rows, threads,
-                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, v, r % v.dims.y, r / v.dims.y); },
+                [&](int r) { litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, sun, v, r % v.dims.y, r / v.dims.y); },
                 report);
     progress.finishedPass(rows);
     for (size_t lit : litPerRow) v.litFroxels += lit;
@@ -201,8 +209,8 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(columns, threads, [&](int c) { integrateColumn(v, c % v.dims.x, c / v.dims.x); }, report);
     progress.finishedPass(columns);
 
-    const GeometrySet geometry(scene.geometry);
-    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, v, result.image, y); }, report);
+    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, sun, v, result.image, y); },
+                report);
     return result;
 }
 

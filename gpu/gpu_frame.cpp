@@ -130,7 +130,7 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 }
 
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
-                                         size_t vertexBytes, int shadowReduction) {
+                                         size_t vertexBytes, int shadowReduction, size_t sunShadowBytes) {
     bool dirty = false;
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     BRUME_TRY(ensureBuffer(res.frame, sizeof(shd::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Memory::Upload,
@@ -155,6 +155,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            std::max<size_t>(cs.lights.size(), 1);
     BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
                            "shadow transmittance", dirty));
+    BRUME_TRY(ensureBuffer(res.sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), storage,
+                           Memory::Upload, "sun shadow map", dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }

@@ -12,7 +12,8 @@ namespace {
 
 VkDescriptorType bindingType(int binding) {
     if (binding == shd::BINDING_FRAME || binding == shd::BINDING_PREVIOUS_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    if (binding <= shd::BINDING_COUNTERS || binding == shd::BINDING_SHADOW_TRANSMITTANCE)
+    if (binding <= shd::BINDING_COUNTERS || binding == shd::BINDING_SHADOW_TRANSMITTANCE ||
+        binding == shd::BINDING_SUN_SHADOW_MAP)
         return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
@@ -88,13 +89,15 @@ VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, const VkD
 }  // namespace
 
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
-    // Bindings 0..3, BINDING_PREVIOUS_FRAME and BINDING_SHADOW_TRANSMITTANCE are buffers,
-    // 4..BINDING_OUTPUT images; the history pair is bound per frame by writeHistoryBindings.
-    const std::array<const Buffer*, 6> buffers{&r.frame,    &r.volumes,       &r.lights,
-                                               &r.counters, &r.previousFrame, &r.shadowTransmittance};
-    const std::array<int, 6> bufferBindings{shd::BINDING_FRAME,    shd::BINDING_VOLUMES,
+    // Bindings 0..3, BINDING_PREVIOUS_FRAME, BINDING_SHADOW_TRANSMITTANCE and BINDING_SUN_SHADOW_MAP
+    // are buffers, 4..BINDING_OUTPUT images; the history pair is bound per frame by writeHistoryBindings.
+    const std::array<const Buffer*, 7> buffers{&r.frame,    &r.volumes,       &r.lights,
+                                               &r.counters, &r.previousFrame, &r.shadowTransmittance,
+                                               &r.sunShadowMap};
+    const std::array<int, 7> bufferBindings{shd::BINDING_FRAME,    shd::BINDING_VOLUMES,
                                             shd::BINDING_LIGHTS,   shd::BINDING_COUNTERS,
-                                            shd::BINDING_PREVIOUS_FRAME, shd::BINDING_SHADOW_TRANSMITTANCE};
+                                            shd::BINDING_PREVIOUS_FRAME, shd::BINDING_SHADOW_TRANSMITTANCE,
+                                            shd::BINDING_SUN_SHADOW_MAP};
     const std::array<const GpuImage*, shd::BINDING_OUTPUT - 3> images{
         &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
         &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};

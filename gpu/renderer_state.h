@@ -42,7 +42,7 @@ struct GpuRenderer::State {
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
-                         int shadowReduction);
+                         int shadowReduction, size_t sunShadowBytes);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                      int historyWriteIndex);
     void recordReadback(bool readBackVolumes);

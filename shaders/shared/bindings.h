@@ -31,7 +31,9 @@ BRUME_CONST int BINDING_SHADOW_TRANSMITTANCE = 18;  // storage vec4[]: fog trans
                                                      // (shadow_volume.h shadowVolumeIndex); a buffer, not an
                                                      // image: lavapipe's imageLoad is ~3x dearer, and the
                                                      // geometry pass may read it
-BRUME_CONST int BINDING_COUNT = 19;
+BRUME_CONST int BINDING_SUN_SHADOW_MAP = 19;  // storage: SunShadowFit, then float depth[N * N]
+                                               // (sun_shadow.h); built on the host (core/sun_shadow.h)
+BRUME_CONST int BINDING_COUNT = 20;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {

@@ -12,5 +12,6 @@
 #include "distant.h"
 #include "shadows.h"
 #include "shadow_volume.h"
+#include "sun_shadow.h"
 #include "tonemap.h"
 #endif
