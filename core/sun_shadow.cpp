@@ -3,6 +3,13 @@
 #include "parallel.h"
 
 namespace brume {
+namespace {
+
+// Past the first hit before looking for the second [m]: above float resolution at the rays'
+// ~1000 m (6e-5 m), far below any solid's thickness.
+constexpr float kSecondDepthGap = 1.0e-3f;
+
+}  // namespace
 
 // docs/shadows.md, "Sun shadow map": at 1024 a 96 m froxel range's map has ~0.2 m texels.
 int sunShadowMapResolution(Quality q) { return q == Quality::Low ? 512 : 1024; }
@@ -30,10 +37,14 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
     const float tMax = shd::SUN_SHADOW_RAY_START + 2.0f * map.fit.centerRadius.w;
     parallelFor(resolution, threads, [&](int j) {
         for (int i = 0; i < resolution; ++i) {
-            const SurfaceHit hit = geometry.intersect(Ray{shd::sunShadowTexelRayOrigin(map.fit, i, j), dir}, tMax);
-            if (hit.hit())
+            const Ray ray{shd::sunShadowTexelRayOrigin(map.fit, i, j), dir};
+            const SurfaceHit first = geometry.intersect(ray, tMax);
+            if (!first.hit()) continue;
+            // The second surface: where the ray leaves the first solid (shared/sun_shadow.h).
+            const SurfaceHit second = geometry.intersect(ray, tMax, first.t + kSecondDepthGap);
+            if (second.hit())
                 map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, glm::ivec2(i, j)))] =
-                    hit.t - shd::SUN_SHADOW_RAY_START;
+                    second.t - shd::SUN_SHADOW_RAY_START;
         }
     });
     return map;

@@ -4,10 +4,15 @@
 //
 // One orthographic map fitted to the froxel range: its square covers the bounding sphere of the
 // froxel frustum (camera to froxel far) seen along the light, so every froxel and every surface in
-// the froxel range lies inside it. Each texel holds the depth, along the light, of the first
-// surface met by a ray cast from far toward the sun's side through the texel centre (relative to
-// the sphere's centre; BRUME_HUGE: nothing). Sampled with bilinear PCF: the 2x2 texels around a
-// point, each compared with the point's depth, blended with bilinear weights.
+// the froxel range lies inside it. Each texel holds the depth, along the light, of the SECOND
+// surface met by a ray cast from the sun's side through the texel centre (relative to the sphere's
+// centre; BRUME_HUGE: none), i.e. where the ray leaves the first solid it enters ("second-depth"
+// shadow maps): a lit surface lies in front of that depth by the solid's thickness, so it never
+// shadows itself (no acne, whatever the sun's elevation), while everything behind the solid is in
+// its shadow. Planes have no back: they shadow nothing (only the space under the ground, which no
+// camera ray reaches; a sun below the horizon still lights fog above the ground, see docs).
+// Sampled with bilinear PCF: the 2x2 texels around a point, each compared with the point's depth,
+// blended with bilinear weights.
 #ifndef BRUME_SHARED_SUN_SHADOW_H
 #define BRUME_SHARED_SUN_SHADOW_H
 
@@ -18,9 +23,9 @@ BRUME_NAMESPACE_BEGIN
 // Where the texel rays start, before the sphere's centre along the light [m]: occluders outside the
 // froxel range (a roof above the view) still shadow it.
 BRUME_CONST float SUN_SHADOW_RAY_START = 1000.0f;
-// Depth bias in texels of world size: keeps a lit surface from shadowing itself through the PCF's
-// neighbouring texels (enough for a sun at least ~27 degrees above a flat ground).
-BRUME_CONST float SUN_SHADOW_BIAS_TEXELS = 2.0f;
+// Depth bias in texels of world size: a point just behind a solid's back face (a froxel touching
+// it) stays lit across the PCF's neighbouring texels. Second depths need no bias against acne.
+BRUME_CONST float SUN_SHADOW_BIAS_TEXELS = 1.0f;
 
 // The map's frame, 64 bytes, std430 = C++ layout (the GPU buffer's header).
 struct SunShadowFit {
