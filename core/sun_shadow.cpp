@@ -1,5 +1,7 @@
 #include "sun_shadow.h"
 
+#include <cstring>
+
 #include "parallel.h"
 
 namespace brume {
@@ -48,6 +50,23 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
         }
     });
     return map;
+}
+
+const SunShadowMap& SunShadowCache::get(const CompiledScene& cs, const std::vector<Geometry>& geometry,
+                                        const shd::FrameUniforms& frame, int resolution, int threads) {
+    shd::SunShadowFit fit{};
+    if (frame.shadows.z > 0)
+        fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.shadows.z - 1)], resolution);
+    const bool mapped = frame.shadows.z > 0;
+    const bool same = valid_ && geometry == geometry_ && mapped == !map_.depth.empty() &&
+                      (!mapped || std::memcmp(&fit, &map_.fit, sizeof(fit)) == 0);
+    if (!same) {
+        map_ = buildSunShadowMap(cs, GeometrySet(geometry), frame, resolution, threads);
+        geometry_ = geometry;
+        valid_ = true;
+        ++builds_;
+    }
+    return map_;
 }
 
 float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p) {

@@ -29,6 +29,22 @@ void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs);
 SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
                                int resolution, int threads);
 
+// The last map built, rebuilt only when the geometry or the fit (camera, froxel range, light
+// direction, resolution) changes: the GPU renderer keeps one, so that edits of fog and lights in
+// the editor do not pay for the host ray cast again.
+class SunShadowCache {
+public:
+    const SunShadowMap& get(const CompiledScene& cs, const std::vector<Geometry>& geometry,
+                            const shd::FrameUniforms& frame, int resolution, int threads);
+    int builds() const { return builds_; }
+
+private:
+    SunShadowMap map_;
+    std::vector<Geometry> geometry_;
+    bool valid_ = false;
+    int builds_ = 0;
+};
+
 // Visibility of light `light` at p through the map: 1 for lights the map does not serve.
 float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p);
 

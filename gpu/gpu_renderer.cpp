@@ -124,8 +124,8 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const std::vector<GeometryVertex> vertices = tessellateGeometry(scene.geometry, frame);
 
     // The same map as the CPU froxel renderer's (ray cast on the host); it does not follow the jitter.
-    const SunShadowMap sun = buildSunShadowMap(cs, GeometrySet(scene.geometry), frame,
-                                               sunShadowMapResolution(request.quality), request.threads);
+    const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
+                                                request.threads);
     const size_t sunBytes = sun.depth.size() * sizeof(float);
     BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));

@@ -5,6 +5,7 @@
 #include <array>
 
 #include "core/compile.h"
+#include "core/sun_shadow.h"
 #include "core/temporal.h"
 #include "frame_resources.h"
 #include "gpu_renderer.h"
@@ -29,6 +30,7 @@ struct GpuRenderer::State {
     GeometryPass geometry;
     ComputePass voxelize, shadowVolume, light, integrate, composite;
     ComputePass temporal;
+    SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
     FrameResources res;

@@ -117,3 +117,29 @@ TEST(SunShadowMap, ShaftSceneHighWithinThreePercentOfTheReference) {
     EXPECT_LT(err, 0.03);
     EXPECT_GT(errNoMap, 0.2);
 }
+
+// The cache the GPU renderer keeps: the same inputs reuse the map; moving a box or the camera
+// rebuilds it, and the rebuilt map equals a fresh build (a stale map would shadow the old place).
+TEST(SunShadowMap, CacheRebuildsExactlyWhenGeometryOrFitChange) {
+    Scene s = shaftScene();
+    const CompiledScene cs = compileScene(s);
+    auto frameOf = [&](const Scene& sc) {
+        shd::FrameUniforms f = makeFrameUniforms(sc, cs, 64, 36, resolveFroxelSettings(sc, Quality::Low), glm::vec3(0.5f));
+        applySunShadowSettings(f, cs);
+        return f;
+    };
+    SunShadowCache cache;
+    const int n = 128;
+    cache.get(cs, s.geometry, frameOf(s), n, 2);
+    cache.get(cs, s.geometry, frameOf(s), n, 2);
+    EXPECT_EQ(cache.builds(), 1);
+    s.geometry[1].transform.translation.x += 3.0f;
+    const std::vector<float> moved = cache.get(cs, s.geometry, frameOf(s), n, 2).depth;
+    EXPECT_EQ(cache.builds(), 2);
+    EXPECT_EQ(moved, buildSunShadowMap(cs, GeometrySet(s.geometry), frameOf(s), n, 2).depth);
+    s.camera.position.x += 1.0f;
+    cache.get(cs, s.geometry, frameOf(s), n, 2);
+    EXPECT_EQ(cache.builds(), 3);
+    cache.get(cs, s.geometry, frameOf(s), n * 2, 2);
+    EXPECT_EQ(cache.builds(), 4);
+}
