@@ -17,6 +17,7 @@
 #include "progress.h"
 #include "render.h"
 #include "shadows.h"
+#include "sun_shadow.h"
 
 namespace brume {
 namespace {
@@ -46,8 +47,10 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
 }
 
 // Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
-// light + ambient) + emission. Returns how many froxels of the row were lit.
-size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClusters& clusters, FroxelVolumes& v, int y,
+// light x the sun shadow map's visibility + ambient) + emission, over the lights of the froxel's
+// cluster. Returns how many froxels of the row were lit.
+size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClusters& clusters, const SunShadowMap& sun,
+                FroxelVolumes& v, int y,
                 int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
@@ -78,7 +81,8 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClus
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;
             perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), shadow, p,
-                                                            ls.toLight, ls.distance);
+                                                            ls.toLight, ls.distance) *
+                         sunShadowVisibility(sun, v.frame, static_cast<int>(li), p);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);
@@ -125,8 +129,8 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
 }
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
-void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const FroxelVolumes& v,
-                  Image& img, int y) {
+void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
+                  const FroxelVolumes& v, Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -138,9 +142,11 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         vec3 background = cs.ambient;
         float viewDepth = cameraFar;
         if (hit.hit()) {
-            // The fog's shadow on the surface, as the GPU's geometry pass computes it.
+            // The fog's shadow and the sun shadow map's on the surface, as the GPU's geometry pass
+            // computes them; exact geometry occlusion stays off so that both renderers agree.
             const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
-                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist);
+                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist) *
+                       sunShadowVisibility(sun, v.frame, i, from);
             };
             background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
@@ -179,6 +185,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     FroxelVolumes& v = result.volumes;
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
     applyShadowSettings(frame, request);
+    applySunShadowSettings(frame, cs);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 
@@ -194,12 +201,15 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     v.overfullClusters = clusters.overfullClusters;
+    const GeometrySet geometry(scene.geometry);
+    const SunShadowMap sun = buildSunShadowMap(cs, geometry, frame, sunShadowMapResolution(request.quality), threads);
 
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
     parallelFor(rows, threads,
                 [&](int r) {
-                    litPerRow[static_cast<size_t>(r)] = lightRow(cs, shadow, clusters, v, r % v.dims.y, r / v.dims.y);
+                    litPerRow[static_cast<size_t>(r)] =
+                        lightRow(cs, shadow, clusters, sun, v, r % v.dims.y, r / v.dims.y);
                 },
                 report);
     progress.finishedPass(rows);
@@ -212,8 +222,8 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(columns, threads, [&](int c) { integrateColumn(v, c % v.dims.x, c / v.dims.x); }, report);
     progress.finishedPass(columns);
 
-    const GeometrySet geometry(scene.geometry);
-    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, v, result.image, y); }, report);
+    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, sun, v, result.image, y); },
+                report);
     return result;
 }
 

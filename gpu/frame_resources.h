@@ -45,6 +45,8 @@ struct FrameResources {
     // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims cells per light.
     glm::ivec3 shadowExtent{0};  // cells x, y and z * lights: the shadow volume pass's dispatch
     Buffer shadowTransmittance;  // vec4[], at least one entry
+    // Sun shadow map (shaders/shared/sun_shadow.h), ray cast on the host: SunShadowFit + float[N * N].
+    Buffer sunShadowMap;
 
     // Every vdb volume's NanoVDB grid back to back (compileScene's order and offsets), sparse as
     // imported: GPU memory is the NanoVDB size. Re-uploaded only when the set of grids changes.

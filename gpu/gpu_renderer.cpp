@@ -7,6 +7,7 @@
 #include "core/clusters.h"
 #include "core/compile.h"
 #include "core/shadows.h"
+#include "core/sun_shadow.h"
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
@@ -117,12 +118,17 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
     applyShadowSettings(frame, request);
+    applySunShadowSettings(frame, cs);
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
     const std::vector<GeometryVertex> vertices = tessellateGeometry(scene.geometry, frame);
 
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y));
+    // The same map as the CPU froxel renderer's (ray cast on the host); it does not follow the jitter.
+    const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
+                                                request.threads);
+    const size_t sunBytes = sun.depth.size() * sizeof(float);
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
@@ -131,6 +137,9 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r.lightClusters.mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
+    std::memcpy(r.sunShadowMap.mapped, &sun.fit, sizeof(sun.fit));
+    if (sunBytes > 0)
+        std::memcpy(static_cast<char*>(r.sunShadowMap.mapped) + sizeof(sun.fit), sun.depth.data(), sunBytes);
 
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
     // decides, as for the CPU renderer); only the last is read back.
@@ -144,6 +153,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
         frame.jitter.w = t.useHistory ? t.historyWeight : 0.0f;
         applyShadowSettings(frame, request);  // as renderFroxelCpu
+        applySunShadowSettings(frame, cs);
         std::memcpy(r.frame.mapped, &frame, sizeof(frame));
         std::memcpy(r.previousFrame.mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);

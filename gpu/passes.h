@@ -11,8 +11,8 @@
 namespace brume::gpu {
 
 // Geometry: planes, boxes and spheres rasterized with a depth test and shaded like
-// core/geometry.cpp shadeSurface without shadows.
-// in: frame, lights, vertices. out: sceneColor (sky = ambient), sceneDepth (sky = camera far).
+// core/geometry.cpp shadeSurface with the fog's shadow and the sun shadow map, not exact occlusion.
+// in: frame, lights, vertices, shadowTransmittance, sunShadowMap. out: sceneColor (sky = ambient), sceneDepth (sky = camera far).
 class GeometryPass {
 public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
@@ -36,7 +36,7 @@ void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const Descript
 Result<ComputePass> createShadowVolumePass(const Device& device, VkPipelineLayout layout);
 void recordShadowVolume(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 extent);
 
-// Light. in: frame, lights, media*, shadowTransmittance. out: source, counters.
+// Light. in: frame, lights, media*, shadowTransmittance, sunShadowMap. out: source, counters.
 Result<ComputePass> createLightPass(const Device& device, VkPipelineLayout layout);
 void recordLight(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 

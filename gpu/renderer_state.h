@@ -5,6 +5,7 @@
 #include <array>
 
 #include "core/compile.h"
+#include "core/sun_shadow.h"
 #include "core/temporal.h"
 #include "frame_resources.h"
 #include "gpu_renderer.h"
@@ -29,6 +30,7 @@ struct GpuRenderer::State {
     GeometryPass geometry;
     ComputePass voxelize, shadowVolume, light, integrate, composite;
     ComputePass temporal;
+    SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
     FrameResources res;
@@ -43,7 +45,7 @@ struct GpuRenderer::State {
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
-                         int shadowReduction);
+                         int shadowReduction, size_t sunShadowBytes);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                      int historyWriteIndex);
     void recordReadback(bool readBackVolumes);

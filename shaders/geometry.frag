@@ -4,6 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
 #include "fog_shadow.glsl"
+#include "sun_shadow.glsl"
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -27,7 +28,8 @@ void main() {
         LightSample ls = evalLight(lights[i], worldPos);
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
-        radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance);
+        radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *
+                    sunShadowVisibility(i, origin);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

@@ -10,6 +10,10 @@ layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBlock { Froxel
 layout(std140, set = 0, binding = BINDING_PREVIOUS_FRAME) uniform PreviousFrameBlock { FrameUniforms previousFrame; };
 layout(std430, set = 0, binding = BINDING_SHADOW_TRANSMITTANCE) buffer ShadowBlock { vec4 shadowTransmittance[]; };
 layout(std430, set = 0, binding = BINDING_LIGHT_CLUSTERS) readonly buffer ClusterBlock { int lightClusters[]; };
+layout(std430, set = 0, binding = BINDING_SUN_SHADOW_MAP) readonly buffer SunShadowBlock {
+    SunShadowFit sunShadowFit;
+    float sunShadowDepth[];
+};
 
 #ifdef BRUME_FROXEL_IMAGES
 layout(set = 0, binding = BINDING_MEDIA_SCATTERING, rgba32f) uniform image3D mediaScatteringG;

@@ -48,8 +48,8 @@ RenderRequest smallRequest() {
 Light sun() {
     Light l = makeLight(LightType::Directional);
     l.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
-    // Geometry shadows (shadow maps) are not in either froxel renderer yet; the fog's own shadow is.
-    l.shadows = false;
+    // Geometry shadows through the sun shadow map (shared/sun_shadow.h) and the fog's own shadow.
+    l.shadows = true;
     return l;
 }
 
@@ -227,8 +227,8 @@ TEST_F(GpuTest, GeometryBehindFogMatchesCpu) {
     expectMatchesCpu(s, "geometry + height + lights");
 }
 
-// A purely emissive medium (sigma_t = 0) skips lighting but still glows on both sides; and shadow
-// flags (geometry occlusion) are ignored alike by both froxel renderers until shadow maps exist.
+// A purely emissive medium (sigma_t = 0) skips lighting but still glows on both sides; and the sun's
+// shadow flag (its shadow map on the ground) is honoured alike by both froxel renderers.
 TEST_F(GpuTest, EmissiveOnlyMediumAndShadowFlagsMatchCpu) {
     Scene s = baseScene();
     Volume glow = box();
@@ -241,6 +241,25 @@ TEST_F(GpuTest, EmissiveOnlyMediumAndShadowFlagsMatchCpu) {
     s.lights = {l};
     s.geometry = ground();
     expectMatchesCpu(s, "emissive only + shadow flag");
+}
+
+// The sun shadow map (shared/sun_shadow.h): a roof of two slabs with a gap over height fog and the
+// ground, so the light pass sees a shaft and the geometry pass a lit strip among shadow; both
+// renderers must sample the same map the same way (PCF edges included), at low's map size too.
+TEST_F(GpuTest, SunShadowMapShaftMatchesCpu) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Exponential)};
+    s.geometry = ground();
+    for (float z : {-4.0f, 4.0f}) {
+        Geometry slab;
+        slab.type = GeometryType::Box;
+        slab.transform.translation = {0.0f, 3.5f, z};
+        slab.transform.scale = {20.0f, 0.3f, 7.0f};
+        s.geometry.push_back(slab);
+    }
+    s.lights = {sun()};
+    expectMatchesCpu(s, "sun shadow map, high", Quality::High);
+    expectMatchesCpu(s, "sun shadow map, low", Quality::Low);
 }
 
 // Volumetric shadows (shared/shadows.h): a dense faded box over height fog and the ground, a sun and

@@ -52,10 +52,12 @@ layout(std430, binding = 3) buffer F430 { FrameUniforms f430; };
 layout(std430, binding = 4) buffer V430 { VolumeData v430[2]; };
 layout(std430, binding = 5) buffer L430 { LightData l430[2]; };
 layout(std430, binding = 6) buffer C430 { FroxelCounters c430; };
+layout(std430, binding = 7) buffer S430 { SunShadowFit s430; float sDepth[]; };
 layout(local_size_x = 1) in;
 // Every block must be live to be reflected; EShReflectionAllBlockVariables then lists all members.
 void main() {
-    c430.litFroxels = uint(f140.counts.x + v140.kind.x + l140.kind.x + f430.counts.x + v430[0].kind.x + l430[0].kind.x);
+    c430.litFroxels = uint(f140.counts.x + v140.kind.x + l140.kind.x + f430.counts.x + v430[0].kind.x + l430[0].kind.x +
+                          int(s430.dir.x + sDepth[0]));
 }
 )";
 
@@ -181,6 +183,20 @@ TEST(SharedLayout, FroxelCountersStd430MatchCpp) {
     EXPECT_MEMBER("c430.", FroxelCounters, litFroxels);
     EXPECT_MEMBER("c430.", FroxelCounters, skippedFroxels);
     EXPECT_EQ(reflected().blockSizes.at("C430"), static_cast<int>(sizeof(shd::FroxelCounters)));
+}
+
+// The sun shadow map's header, then its depths right after it (resources.glsl SunShadowBlock,
+// the host's upload in gpu_renderer.cpp).
+TEST(SharedLayout, SunShadowFitStd430MatchesCpp) {
+    EXPECT_MEMBER("s430.", SunShadowFit, centerRadius);
+    EXPECT_MEMBER("s430.", SunShadowFit, right);
+    EXPECT_MEMBER("s430.", SunShadowFit, up);
+    EXPECT_MEMBER("s430.", SunShadowFit, dir);
+    const auto& offsets = reflected().offsets;
+    auto depth = offsets.find("sDepth");
+    if (depth == offsets.end()) depth = offsets.find("sDepth[0]");
+    ASSERT_NE(depth, offsets.end()) << seenNames();
+    EXPECT_EQ(depth->second, static_cast<int>(sizeof(shd::SunShadowFit)));
 }
 
 // The sizes the header comments promise (and that the GPU buffers are sized with).

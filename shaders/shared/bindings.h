@@ -35,7 +35,9 @@ BRUME_CONST int BINDING_VDB_GRIDS = 19;  // storage uint[]: every vdb volume's N
                                           // (VolumeData.kind.y: byte offset), read with PNanoVDB
 BRUME_CONST int BINDING_LIGHT_CLUSTERS = 20;  // storage int[]: light lists per cluster (clusters.h), uploaded
                                                // from core/clusters.cpp each frame
-BRUME_CONST int BINDING_COUNT = 21;
+BRUME_CONST int BINDING_SUN_SHADOW_MAP = 21;  // storage: SunShadowFit, then float depth[N * N]
+                                               // (sun_shadow.h); built on the host (core/sun_shadow.h)
+BRUME_CONST int BINDING_COUNT = 22;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {

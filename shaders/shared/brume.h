@@ -13,5 +13,6 @@
 #include "shadows.h"
 #include "shadow_volume.h"
 #include "clusters.h"
+#include "sun_shadow.h"
 #include "tonemap.h"
 #endif

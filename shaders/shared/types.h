@@ -70,7 +70,8 @@ struct FrameUniforms {
                           // w: GPU temporal pass only: this frame's history weight (0 = no history)
     ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
                           // is always on; shadows.h); y: transmittance volume reduction r >= 1
-                          // (shadow_volume.h); zw unused
+                          // (shadow_volume.h); z: index + 1 of the light the sun shadow
+                          // map serves, 0 = none (sun_shadow.h); w unused
 };
 
 BRUME_NAMESPACE_END

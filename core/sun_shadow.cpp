@@ -1,0 +1,82 @@
+#include "sun_shadow.h"
+
+#include <cstring>
+
+#include "parallel.h"
+
+namespace brume {
+namespace {
+
+// Past the first hit before looking for the second [m]: above float resolution at the rays'
+// ~1000 m (6e-5 m), far below any solid's thickness.
+constexpr float kSecondDepthGap = 1.0e-3f;
+
+}  // namespace
+
+// docs/shadows.md, "Sun shadow map": at 1024 a 96 m froxel range's map has ~0.2 m texels.
+int sunShadowMapResolution(Quality q) { return q == Quality::Low ? 512 : 1024; }
+
+int sunShadowLight(const CompiledScene& cs) {
+    for (size_t i = 0; i < cs.lights.size(); ++i) {
+        const shd::LightData& l = cs.lights[i];
+        if (l.kind.x == shd::LIGHT_DIRECTIONAL && l.kind.y != 0) return static_cast<int>(i);
+    }
+    return -1;
+}
+
+void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs) {
+    frame.shadows.z = sunShadowLight(cs) + 1;
+}
+
+SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
+                               int resolution, int threads) {
+    SunShadowMap map;
+    if (frame.shadows.z <= 0) return map;
+    map.fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.shadows.z - 1)], resolution);
+    map.depth.assign(static_cast<size_t>(resolution) * static_cast<size_t>(resolution), shd::BRUME_HUGE);
+    const glm::vec3 dir(map.fit.dir);
+    // Rays end past the far side of the fitted sphere: nothing beyond can shadow the froxel range.
+    const float tMax = shd::SUN_SHADOW_RAY_START + 2.0f * map.fit.centerRadius.w;
+    parallelFor(resolution, threads, [&](int j) {
+        for (int i = 0; i < resolution; ++i) {
+            const Ray ray{shd::sunShadowTexelRayOrigin(map.fit, i, j), dir};
+            const SurfaceHit first = geometry.intersect(ray, tMax);
+            if (!first.hit()) continue;
+            // The second surface: where the ray leaves the first solid (shared/sun_shadow.h).
+            const SurfaceHit second = geometry.intersect(ray, tMax, first.t + kSecondDepthGap);
+            if (second.hit())
+                map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, glm::ivec2(i, j)))] =
+                    second.t - shd::SUN_SHADOW_RAY_START;
+        }
+    });
+    return map;
+}
+
+const SunShadowMap& SunShadowCache::get(const CompiledScene& cs, const std::vector<Geometry>& geometry,
+                                        const shd::FrameUniforms& frame, int resolution, int threads) {
+    shd::SunShadowFit fit{};
+    if (frame.shadows.z > 0)
+        fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.shadows.z - 1)], resolution);
+    const bool mapped = frame.shadows.z > 0;
+    const bool same = valid_ && geometry == geometry_ && mapped == !map_.depth.empty() &&
+                      (!mapped || std::memcmp(&fit, &map_.fit, sizeof(fit)) == 0);
+    if (!same) {
+        map_ = buildSunShadowMap(cs, GeometrySet(geometry), frame, resolution, threads);
+        geometry_ = geometry;
+        valid_ = true;
+        ++builds_;
+    }
+    return map_;
+}
+
+float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p) {
+    if (!shd::sunShadowMapped(frame, light) || map.depth.empty()) return 1.0f;
+    const shd::SunShadowLookup k = shd::sunShadowLookup(map.fit, p);
+    if (!k.inside) return 1.0f;
+    auto at = [&](int dx, int dy) {
+        return map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, k.texel + glm::ivec2(dx, dy)))];
+    };
+    return shd::sunShadowPcf(k, at(0, 0), at(1, 0), at(0, 1), at(1, 1));
+}
+
+}  // namespace brume

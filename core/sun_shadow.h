@@ -1,0 +1,51 @@
+// The sun shadow map on the host (shaders/shared/sun_shadow.h): built by ray casting the preview
+// geometry into the fitted map's texel centres, sampled with the shared PCF. The CPU froxel
+// renderer samples it directly; the GPU renderer uploads the same map, so both see the same bits.
+#pragma once
+
+#include <vector>
+
+#include "compile.h"
+#include "geometry.h"
+#include "quality.h"
+
+namespace brume {
+
+// Texels per side of the sun shadow map at this quality (docs/shadows.md, "Sun shadow map").
+int sunShadowMapResolution(Quality q);
+
+// The light the map serves: the first directional light with shadows = true; -1 when none.
+int sunShadowLight(const CompiledScene& cs);
+
+struct SunShadowMap {
+    shd::SunShadowFit fit{};
+    std::vector<float> depth;  // N x N, row-major (shd::sunShadowIndex); empty: no mapped light
+};
+
+// Sets frame.shadows.z (the mapped light) for the scene: call after applyShadowSettings.
+void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs);
+
+// The map for frame (empty when frame.shadows.z is 0). Independent of the frame's jitter.
+SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
+                               int resolution, int threads);
+
+// The last map built, rebuilt only when the geometry or the fit (camera, froxel range, light
+// direction, resolution) changes: the GPU renderer keeps one, so that edits of fog and lights in
+// the editor do not pay for the host ray cast again.
+class SunShadowCache {
+public:
+    const SunShadowMap& get(const CompiledScene& cs, const std::vector<Geometry>& geometry,
+                            const shd::FrameUniforms& frame, int resolution, int threads);
+    int builds() const { return builds_; }
+
+private:
+    SunShadowMap map_;
+    std::vector<Geometry> geometry_;
+    bool valid_ = false;
+    int builds_ = 0;
+};
+
+// Visibility of light `light` at p through the map: 1 for lights the map does not serve.
+float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p);
+
+}  // namespace brume

@@ -1,0 +1,11 @@
+// Visibility of light i at p through the sun shadow map (core: sunShadowVisibility): 1 for lights
+// the map does not serve and outside the map.
+float sunShadowVisibility(int i, vec3 p) {
+    if (!sunShadowMapped(frame, i)) return 1.0f;
+    SunShadowLookup k = sunShadowLookup(sunShadowFit, p);
+    if (!k.inside) return 1.0f;
+    return sunShadowPcf(k, sunShadowDepth[sunShadowIndex(sunShadowFit, k.texel)],
+                        sunShadowDepth[sunShadowIndex(sunShadowFit, k.texel + ivec2(1, 0))],
+                        sunShadowDepth[sunShadowIndex(sunShadowFit, k.texel + ivec2(0, 1))],
+                        sunShadowDepth[sunShadowIndex(sunShadowFit, k.texel + ivec2(1, 1))]);
+}
