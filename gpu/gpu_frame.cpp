@@ -209,7 +209,7 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     timer.end(cmd);
 
     timer.begin(cmd, "voxelize");
-    recordVoxelize(cmd, voxelize, bindings, res.froxelDims);
+    recordVoxelize(cmd, res.vdbGridsUploaded.empty() ? voxelize : voxelizeVdb, bindings, res.froxelDims);
     timer.end(cmd);
     timer.begin(cmd, "light");
     computeToComputeBarrier(cmd);

@@ -52,7 +52,8 @@ Result<void> GpuRenderer::State::createPasses() {
     Result<GeometryPass> g = GeometryPass::create(*device, layout);
     if (!g) return g.error();
     geometry = std::move(g.value());
-    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&shadowVolume, &createShadowVolumePass},
+    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&voxelizeVdb, &createVoxelizeVdbPass},
+                                std::pair{&shadowVolume, &createShadowVolumePass},
                                 std::pair{&light, &createLightPass}, std::pair{&temporal, &createTemporalPass},
                                 std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
         Result<ComputePass> p = create(*device, layout);

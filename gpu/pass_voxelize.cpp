@@ -7,6 +7,10 @@ Result<ComputePass> createVoxelizePass(const Device& device, VkPipelineLayout la
     return createComputePass(device, layout, "voxelize.comp", "voxelize");
 }
 
+Result<ComputePass> createVoxelizeVdbPass(const Device& device, VkPipelineLayout layout) {
+    return createComputePass(device, layout, "voxelize_vdb.comp", "voxelize (vdb)");
+}
+
 // One invocation per froxel.
 void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims) {
     bindComputePass(cmd, pass, b);

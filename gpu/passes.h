@@ -29,6 +29,8 @@ private:
 
 // Voxelize. in: frame, volumes. out: mediaScatteringG, mediaExtinction, mediaEmission.
 Result<ComputePass> createVoxelizePass(const Device& device, VkPipelineLayout layout);
+// The variant that samples vdb grids; costs ~9x more on lavapipe, so only for scenes that have them.
+Result<ComputePass> createVoxelizeVdbPass(const Device& device, VkPipelineLayout layout);
 void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
 // Shadow volume. in: frame, volumes, lights. out: shadowTransmittance (each shadowing light's fog

@@ -1,30 +1,6 @@
-// Pass 1: media of every volume at each froxel's sample point (core: voxelizeRow); vdb volumes
-// sample their NanoVDB grid (vdb_sample.glsl).
+// Pass 1 for scenes without vdb volumes (voxelize_body.glsl); vdb volumes report density 0 here.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
-#include "vdb_sample.glsl"
-
-layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
-
-MediaSample mediaAt(vec3 p) {
-    MediaSample m = emptyMedia();
-    for (int i = 0; i < frame.counts.z; ++i) {
-        if (!insideBounds(volumes[i], p)) continue;
-        float density = volumes[i].kind.x == VOLUME_VDB ? vdbDensity(volumes[i], p)
-                                                        : analyticDensity(volumes[i], p, frame.cameraPosition.xyz);
-        m = addMedium(m, volumes[i], density);
-    }
-    return m;
-}
-
-void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
-    vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
-    MediaSample m = mediaAt(p);
-    imageStore(mediaScatteringG, id, vec4(m.sigmaS, mediaPhaseG(m)));
-    imageStore(mediaExtinction, id, vec4(m.sigmaT, 0.0f));
-    imageStore(mediaEmission, id, vec4(m.emission, 0.0f));
-}
+#include "voxelize_body.glsl"
