@@ -70,7 +70,7 @@ std::variant<RenderOutput, RenderFailure> RenderSession::render(const Scene& sce
         case RendererKind::Gpu: {
 #if BRUME_HAS_GPU
             Result<gpu::GpuRender> r = gpu_->renderer->render(scene, request);
-            if (!r) return RenderFailure{false, r.error().message};
+            if (!r) return RenderFailure{r.error().badInput, r.error().message};
             out.image = std::move(r.value().image);
             out.stats.device = gpu_->renderer->deviceName();
             for (const gpu::PassTiming& p : r.value().passes) out.stats.passes.push_back({p.name, p.gpuMs});
@@ -257,7 +257,7 @@ CommandResult runRender(const RenderOptions& o) {
     std::variant<RenderOutput, RenderFailure> result = renderFrames(session, scene.value(), request, o.orbit);
     if (const RenderFailure* f = std::get_if<RenderFailure>(&result)) {
         progress.end();
-        return f->cannotRun ? badInput(f->message) : internalFailure(f->message);
+        return f->userCanFix ? badInput(f->message) : internalFailure(f->message);
     }
     RenderOutput& out = std::get<RenderOutput>(result);
     progress.complete();

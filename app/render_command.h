@@ -40,10 +40,11 @@ struct RenderOutput {
     RenderStats stats;
 };
 
-// A renderer's failure: `cannotRun` = it could not start (no Vulkan device, unknown device name),
-// which the user can fix (exit 2); otherwise it failed while rendering (exit 1).
+// A renderer's failure: `userCanFix` = it could not start (no Vulkan device, unknown device name) or
+// the scene asks for more than the device can do (Error::badInput): exit 2; otherwise it failed
+// while rendering (exit 1).
 struct RenderFailure {
-    bool cannotRun;
+    bool userCanFix;
     std::string message;
 };
 

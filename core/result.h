@@ -10,6 +10,9 @@ namespace brume {
 
 struct Error {
     std::string message;
+    // The input asks for what cannot be done (too large for the device, say) and the user can fix
+    // it: the command line exits 2 rather than 1.
+    bool badInput = false;
 };
 
 template <class T>

@@ -29,7 +29,8 @@ Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& d
     const VkDeviceSize limit = device->limits().maxStorageBufferRange;
     if (total > limit)
         return Error{"The scene's vdb grids take " + mib(total) + " as NanoVDB, more than the " + mib(limit) +
-                     " one GPU storage buffer can address on this device; use fewer or smaller grids."};
+                     " one GPU storage buffer can address on this device; use fewer or smaller grids.",
+                     /*badInput=*/true};
     const VkDeviceSize size = std::max<VkDeviceSize>(total, 32);
     if (!res.vdbGrids.buffer || res.vdbGrids.size != size) {
         res.vdbGrids = Buffer{};

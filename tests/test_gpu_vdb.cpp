@@ -185,6 +185,7 @@ TEST_F(GpuVdb, GridsPastTheStorageBufferLimitAreRefusedClearly) {
     if (r.ok()) GTEST_SKIP() << "this device binds more than 128 MiB per storage buffer";
     EXPECT_NE(r.error().message.find("vdb grids take"), std::string::npos) << r.error().message;
     EXPECT_NE(r.error().message.find("storage buffer"), std::string::npos) << r.error().message;
+    EXPECT_TRUE(r.error().badInput) << "the user can fix it: brume render exits 2";
     // The renderer stays usable after the refusal.
     s.volumes.resize(1);
     EXPECT_TRUE(renderer->render(s, request).ok());
