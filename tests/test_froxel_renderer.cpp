@@ -3,6 +3,8 @@
 // per-pixel reference renderer as the quality presets grow.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,24 +32,9 @@ Volume uniformFog(glm::vec3 sigmaS, glm::vec3 sigmaA, glm::vec3 emission = glm::
     return v;
 }
 
-Volume boxFog(glm::vec3 center, glm::vec3 size, float edgeFade, glm::vec3 sigmaS, glm::vec3 sigmaA) {
-    Volume v;
-    v.type = VolumeType::Box;
-    v.transform.translation = center;
-    v.transform.scale = size;
-    v.edge_fade = edgeFade;
-    v.medium.scattering = sigmaS;
-    v.medium.absorption = sigmaA;
-    return v;
-}
+using test::boxFog;
 
-Geometry ground(glm::vec3 albedo) {
-    Geometry g;
-    g.type = GeometryType::Plane;
-    g.height = 0.0f;
-    g.albedo = albedo;
-    return g;
-}
+Geometry ground(glm::vec3 albedo) { return test::groundPlane(albedo); }
 
 Scene pinnedScene() {
     Scene s;
@@ -313,12 +300,7 @@ TEST(FroxelEnergy, ConservativeFogInUniformSkyGivesTheSky) {
 // its shadow on the ground, an error floor of ~1.1% (high 2.04%, ultra 1.44%); with them, high is at
 // 1.1% and ultra 0.4%: what is left is the froxel discretisation the presets trade.
 Scene boxFogScene() {
-    Scene s;
-    s.camera.position = {0.0f, 1.8f, 7.0f};
-    s.camera.target = {0.0f, 1.0f, 0.0f};
-    s.camera.fov_y_deg = 55.0f;
-    s.camera.far = 60.0f;
-    s.ambient = {0.02f, 0.025f, 0.03f};
+    Scene s = test::sceneWithTestView();
     Light sun = makeLight(LightType::Directional);
     sun.direction = glm::normalize(glm::vec3(0.2f, -0.9f, 0.45f));
     sun.intensity = 2.0f;

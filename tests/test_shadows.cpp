@@ -3,6 +3,8 @@
 // against the reference: the fog's shadow on the ground, and a dense block that must not leak light.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -16,16 +18,7 @@ using namespace brume;
 
 namespace {
 
-Volume boxFog(glm::vec3 center, glm::vec3 size, float edgeFade, float sigmaS, float sigmaA) {
-    Volume v;
-    v.type = VolumeType::Box;
-    v.transform.translation = center;
-    v.transform.scale = size;
-    v.edge_fade = edgeFade;
-    v.medium.scattering = glm::vec3(sigmaS);
-    v.medium.absorption = glm::vec3(sigmaA);
-    return v;
-}
+using test::boxFog;
 
 Light sunFrom(glm::vec3 direction) {
     Light l = makeLight(LightType::Directional);
@@ -34,12 +27,7 @@ Light sunFrom(glm::vec3 direction) {
     return l;
 }
 
-Geometry groundPlane(float albedo) {
-    Geometry g;
-    g.type = GeometryType::Plane;
-    g.albedo = glm::vec3(albedo);
-    return g;
-}
+Geometry groundPlane(float albedo) { return test::groundPlane(glm::vec3(albedo)); }
 
 RenderRequest request(int w, int h, Quality q) {
     RenderRequest r;

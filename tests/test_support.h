@@ -8,6 +8,8 @@
 
 #include <unistd.h>
 
+#include "core/scene.h"
+
 namespace brume::test {
 
 // A fresh, empty folder per test, unique per process (other build folders may run the same test
@@ -29,6 +31,40 @@ struct TempDir {
 
 inline size_t fileCount(const std::filesystem::path& dir) {
     return static_cast<size_t>(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()));
+}
+
+// A box fog volume of the given centre and size [m] (no rotation) and coefficients [1/m].
+inline Volume boxFog(glm::vec3 center, glm::vec3 size, float edgeFade, glm::vec3 sigmaS, glm::vec3 sigmaA) {
+    Volume v;
+    v.type = VolumeType::Box;
+    v.transform.translation = center;
+    v.transform.scale = size;
+    v.edge_fade = edgeFade;
+    v.medium.scattering = sigmaS;
+    v.medium.absorption = sigmaA;
+    return v;
+}
+inline Volume boxFog(glm::vec3 center, glm::vec3 size, float edgeFade, float sigmaS, float sigmaA) {
+    return boxFog(center, size, edgeFade, glm::vec3(sigmaS), glm::vec3(sigmaA));
+}
+
+// The horizontal plane y = 0.
+inline Geometry groundPlane(glm::vec3 albedo) {
+    Geometry g;
+    g.type = GeometryType::Plane;
+    g.albedo = albedo;
+    return g;
+}
+
+// The view several froxel tests share: 1.8 m up, 7 m back, looking at (0, 1, 0), a dim blue sky.
+inline Scene sceneWithTestView() {
+    Scene s;
+    s.camera.position = {0.0f, 1.8f, 7.0f};
+    s.camera.target = {0.0f, 1.0f, 0.0f};
+    s.camera.fov_y_deg = 55.0f;
+    s.camera.far = 60.0f;
+    s.ambient = {0.02f, 0.025f, 0.03f};
+    return s;
 }
 
 }  // namespace brume::test

@@ -3,6 +3,8 @@
 // history that cannot be poisoned, camera motion, and the shared reprojection rule's round trip.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,12 +25,7 @@ namespace {
 // fast along depth, where 64 slices band. Thin and dark so the reference's shadows (the froxel
 // renderer has none yet) cost little (see FroxelVsReference in test_froxel_renderer.cpp).
 Scene conesScene() {
-    Scene s;
-    s.camera.position = {0.0f, 1.8f, 7.0f};
-    s.camera.target = {0.0f, 1.0f, 0.0f};
-    s.camera.fov_y_deg = 55.0f;
-    s.camera.far = 60.0f;
-    s.ambient = {0.02f, 0.025f, 0.03f};
+    Scene s = test::sceneWithTestView();
     Light spot = makeLight(LightType::Spot);
     spot.position = {1.5f, 4.0f, -1.0f};
     spot.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.1f));
