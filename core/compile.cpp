@@ -71,21 +71,23 @@ shd::VolumeData compileVolume(const Volume& v) {
             boundsOfUnitCube(d, v.transform.worldFromLocal());
             break;
         case VolumeType::Height:
+            // The shared densities divide by transition_height and visibility_distance: scenes from
+            // files are range-checked, scenes built in code are held to the same minimum here.
             d.params.x = v.base_height;
             if (v.profile == HeightProfile::Exponential) {
                 d.kind.x = shd::VOLUME_HEIGHT_EXPONENTIAL;
-                d.params.y = v.falloff;
+                d.params.y = std::max(v.falloff, 0.0f);
                 // Above base + 40/falloff the density is below e^-40 (4e-18): nothing visible.
                 if (v.falloff > 0.0f) d.worldMax.y = v.base_height + 40.0f / v.falloff;
             } else {
                 d.kind.x = shd::VOLUME_HEIGHT_LINEAR;
-                d.params.y = v.transition_height;
-                d.worldMax.y = v.base_height + v.transition_height;
+                d.params.y = std::max(v.transition_height, static_cast<float>(settings::volume_transition_height.min));
+                d.worldMax.y = v.base_height + d.params.y;
             }
             break;
         case VolumeType::Depth:
             d.kind.x = shd::VOLUME_DEPTH;
-            d.params.x = v.visibility_distance;
+            d.params.x = std::max(v.visibility_distance, static_cast<float>(settings::volume_visibility_distance.min));
             d.params.y = v.start_distance;
             break;
         case VolumeType::Vdb: compileVdb(v, d); break;

@@ -386,3 +386,28 @@ TEST(Lights, FroxelScaleClampBoundsTheInverseSquare) {
     EXPECT_GT(prev, 0.5f * std::max(width, zFar - zPrev));
     EXPECT_LT(prev, 0.5f * std::sqrt(2.0f * width * width + (zFar - zPrev) * (zFar - zPrev)) * 1.001f);
 }
+
+// Scenes built in code skip the file's range checks: the divisors of the density profiles are held
+// to their settings' minimum when compiled, so a zero never reaches the shared formulas.
+TEST(Density, ZeroDivisorsFromCodeStayFinite) {
+    Volume linear;
+    linear.type = VolumeType::Height;
+    linear.profile = HeightProfile::Linear;
+    linear.transition_height = 0.0f;
+    Volume depth;
+    depth.type = VolumeType::Depth;
+    depth.visibility_distance = 0.0f;
+    depth.start_distance = 0.0f;
+    const glm::vec3 cam(0.0f, 1.0f, 0.0f);
+    for (const Volume& v : {linear, depth}) {
+        const shd::VolumeData d = compileVolume(v);
+        for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0, 1e-4f, 0), glm::vec3(0, 1, 0), glm::vec3(3, 2, 1)}) {
+            const float density = shd::analyticDensity(d, p, cam);
+            EXPECT_TRUE(std::isfinite(density)) << toString(v.type);
+            EXPECT_GE(density, 0.0f);
+            EXPECT_LE(density, 1.0f);
+        }
+        const float len = shd::distantDensityLength(d, cam, glm::vec3(1, 0, 0), 0.0f, 50.0f);
+        EXPECT_TRUE(std::isfinite(len)) << toString(v.type);
+    }
+}
