@@ -202,7 +202,8 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     v.overfullClusters = clusters.overfullClusters;
     const GeometrySet geometry(scene.geometry);
-    const SunShadowMap sun = buildSunShadowMap(cs, geometry, frame, sunShadowMapResolution(request.quality), threads);
+    const SunShadowMap& sun =
+        history.sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality), threads);
 
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);

@@ -10,6 +10,7 @@
 
 #include "compile.h"
 #include "scene.h"
+#include "sun_shadow.h"
 
 namespace brume {
 
@@ -60,9 +61,13 @@ struct HistoryVolume {
     std::vector<glm::vec4> extinction;  // resolved rgb sigma_t
 };
 
+// What the CPU froxel renderer keeps from frame to frame: the temporal history, and the sun shadow
+// map, which only geometry, camera, froxel range or sun changes invalidate (not the jitter), so a
+// sequence of --frames pays its ray cast once, as the GPU renderer does.
 struct CpuHistory {
     TemporalState state;
     std::array<HistoryVolume, 2> pair;
+    SunShadowCache sunShadow;
 };
 
 }  // namespace brume

@@ -2,6 +2,8 @@
 // the map's occlusion against exact ray queries, and the light-shaft scene against the reference.
 #include <gtest/gtest.h>
 
+#include "core/froxel_frame.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -142,4 +144,32 @@ TEST(SunShadowMap, CacheRebuildsExactlyWhenGeometryOrFitChange) {
     EXPECT_EQ(cache.builds(), 3);
     cache.get(cs, s.geometry, frameOf(s), n * 2, 2);
     EXPECT_EQ(cache.builds(), 4);
+}
+
+// The CPU froxel renderer keeps the map across the frames of a temporal sequence (the jitter does
+// not move the fit): --frames N pays the ray cast once; moving a box rebuilds it, and the image of
+// a cached frame equals a fresh render's.
+TEST(SunShadowMap, CpuFrameSequenceBuildsTheMapOnce) {
+    Scene scene = shaftScene();
+    RenderRequest req;
+    req.width = 64;
+    req.height = 36;
+    req.quality = Quality::Low;
+    req.threads = 2;
+    CpuHistory history;
+    for (int n = 0; n < 4; ++n) {
+        renderFroxelFrameCpu(scene, req, history);
+        req.history = HistoryMode::Continue;
+    }
+    EXPECT_EQ(history.sunShadow.builds(), 1);
+    // The same history without a cached map: its next frame must equal the cached renderer's.
+    CpuHistory fresh;
+    fresh.state = history.state;
+    fresh.pair = history.pair;
+    const Image cached = renderFroxelFrameCpu(scene, req, history).image;
+    EXPECT_EQ(history.sunShadow.builds(), 1);
+    EXPECT_EQ(relativeMeanAbsError(renderFroxelFrameCpu(scene, req, fresh).image, cached), 0.0);
+    scene.geometry[1].transform.translation.x += 0.5f;
+    renderFroxelFrameCpu(scene, req, history);
+    EXPECT_EQ(history.sunShadow.builds(), 2);
 }
