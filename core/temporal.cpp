@@ -126,10 +126,15 @@ void temporalPassCpu(FroxelVolumes& v, CpuHistory& history, const TemporalFrame&
 
 FroxelResult FroxelCpuRenderer::render(const Scene& scene, const RenderRequest& request) {
     RenderRequest frame = request;
-    frame.progress = nullptr;  // progress is reported for the last frame only, so it never goes back
+    const int frames = std::max(request.frames, 1);
     FroxelResult result;
-    for (int n = 0; n < std::max(request.frames, 1); ++n) {
-        if (n == std::max(request.frames, 1) - 1) frame.progress = request.progress;
+    for (int n = 0; n < frames; ++n) {
+        // Frame n covers [n, n + 1) / frames of the sequence, so progress never goes back.
+        if (request.progress) {
+            frame.progress = [&request, n, frames](float f) {
+                request.progress((static_cast<float>(n) + f) / static_cast<float>(frames));
+            };
+        }
         result = renderFroxelFrameCpu(scene, frame, history_);
         frame.history = HistoryMode::Continue;
     }

@@ -487,3 +487,21 @@ TEST(TemporalMotion, HistoryWeightFallsWithReprojectionDistance) {
     }
     EXPECT_EQ(previousWeight, 0.0f);
 }
+
+// A sequence reports progress over all its frames, not only the last: values never fall, the first
+// frame's end is reported near 1/frames, and the last call is 1.
+TEST(TemporalProgress, SpansEveryFrameOfTheSequence) {
+    Scene scene = conesScene();
+    RenderRequest req = request(Quality::Low);
+    req.width = 64;
+    req.height = 36;
+    req.frames = 4;
+    std::vector<float> calls;
+    req.progress = [&calls](float f) { calls.push_back(f); };
+    renderFroxelCpu(scene, req);
+    ASSERT_FALSE(calls.empty());
+    for (size_t i = 1; i < calls.size(); ++i) EXPECT_GE(calls[i], calls[i - 1]) << i;
+    EXPECT_LT(calls.front(), 0.26f);
+    EXPECT_TRUE(std::find(calls.begin(), calls.end(), 0.25f) != calls.end()) << "end of frame 1";
+    EXPECT_EQ(calls.back(), 1.0f);
+}
