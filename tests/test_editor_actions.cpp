@@ -5,9 +5,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "app/editor/accumulation.h"
 #include "app/editor/autosave.h"
 #include "app/editor/document.h"
+#include "app/editor/gizmo_math.h"
 #include "app/editor/view.h"
 #include "io/scene_json.h"
 
@@ -356,4 +359,102 @@ TEST(EditorView, GizmoDragMovesAlongOneAxisWithSnapping) {
     EXPECT_EQ(positionPath(scene, "volume", 0), "volumes[0].transform.translation");
     EXPECT_EQ(positionPath(scene, "light", 1), "lights[1].position");
     EXPECT_EQ(positionPath(scene, "light", 0), "");  // the sun has no position
+}
+
+namespace {
+
+// A camera looking down at the origin from above and to the side, so every ring is seen at an angle.
+Camera obliqueCamera() {
+    Camera c;
+    c.position = {3.0f, 8.0f, 6.0f};
+    c.target = {0.0f, 0.0f, 0.0f};
+    return c;
+}
+
+glm::vec3 cursorRay(const Camera& c, float aspect, glm::vec3 p) {
+    const std::optional<glm::vec2> w = windowFromWorld(c, aspect, p);
+    EXPECT_TRUE(w.has_value());
+    return rayDirection(c, aspect, w->x, w->y);
+}
+
+}  // namespace
+
+TEST(EditorGizmo, AQuarterTurnOfTheCursorAroundTheYRingRotatesNinetyDegrees) {
+    const Camera c = obliqueCamera();
+    const float aspect = 16.0f / 9.0f;
+    const glm::vec3 pivot{0.0f, 0.0f, 0.0f}, y{0.0f, 1.0f, 0.0f};
+    // The cursor on the ring over +X, then a quarter turn counter-clockwise (seen from +Y) at -Z.
+    const std::optional<float> a0 = ringAngle(pivot, y, c.position, cursorRay(c, aspect, {1.0f, 0.0f, 0.0f}));
+    const std::optional<float> a1 = ringAngle(pivot, y, c.position, cursorRay(c, aspect, {0.0f, 0.0f, -1.0f}));
+    ASSERT_TRUE(a0 && a1);
+    const float turn = wrapDegrees(*a1 - *a0);
+    EXPECT_NEAR(turn, 90.0f, 1e-3f);
+    // The object turns with the cursor: its local +X, under the cursor at the start, ends under it.
+    const glm::vec3 r = rotateEuler({0.0f, 0.0f, 0.0f}, 1, turn);
+    EXPECT_NEAR(r.y, 90.0f, 1e-3f);
+    const glm::vec3 x = localAxis(r, 0);
+    EXPECT_NEAR(x.x, 0.0f, 1e-4f);
+    EXPECT_NEAR(x.z, -1.0f, 1e-4f);
+    // Ctrl snaps to 15 degrees; a ring seen edge-on gives no angle.
+    EXPECT_EQ(snapped(47.0f, 15.0f), 45.0f);
+    EXPECT_EQ(snapped(53.0f, 15.0f), 60.0f);
+    EXPECT_EQ(snapped(53.0f, 0.0f), 53.0f);
+    EXPECT_FALSE(ringAngle(pivot, y, {5.0f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f}));
+    // Steps a frame apart add up past half a turn instead of jumping back.
+    float total = 0.0f, prev = 0.0f;
+    for (float a : {100.0f, -160.0f, -60.0f}) total += wrapDegrees(a - prev), prev = a;
+    EXPECT_NEAR(total, 300.0f, 1e-3f);
+}
+
+TEST(EditorGizmo, RotationsAboutWorldAxesComposeWithTheTransform) {
+    // A box already tilted 30 degrees about X, turned 90 about world Y: R' = Ry(90) * Rx(30).
+    const glm::vec3 start{30.0f, 0.0f, 0.0f};
+    const glm::vec3 r = rotateEuler(start, 1, 90.0f);
+    const glm::mat4 got = Transform{glm::vec3(0.0f), r, glm::vec3(1.0f)}.worldFromLocal();
+    const glm::mat4 want = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0)) *
+                           glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(1, 0, 0));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_NEAR(got[i][j], want[i][j], 1e-5f) << i << "," << j;
+    // Turning about the axis it already turns about keeps the numbers readable (no 180 flips),
+    // also past the 90 degrees where the other Euler solution begins.
+    EXPECT_NEAR(rotateEuler({0.0f, 80.0f, 0.0f}, 1, 20.0f).y, 100.0f, 1e-3f);
+    EXPECT_NEAR(rotateEuler({0.0f, 0.0f, 350.0f}, 2, 20.0f).z, 370.0f, 1e-3f);
+    EXPECT_EQ(rotateEuler({10.0f, 20.0f, 30.0f}, 0, 0.0f), glm::vec3(10.0f, 20.0f, 30.0f));
+    const glm::vec3 d = rotateDirection({1.0f, 0.0f, 0.0f}, 2, 90.0f);  // about Z: +X to +Y
+    EXPECT_NEAR(d.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(d.x, 0.0f, 1e-6f);
+}
+
+TEST(EditorGizmo, ScalingAlongXDoublesOnlyXWithSnapping) {
+    const Camera c = obliqueCamera();
+    const float aspect = 16.0f / 9.0f;
+    const glm::vec3 pivot{0.0f, 0.0f, 0.0f}, x = localAxis({0.0f, 0.0f, 0.0f}, 0);
+    // Grab the X handle's tip 1 m out, drag the cursor to 2 m along X.
+    const std::optional<float> s0 = axisParam(pivot, x, c.position, cursorRay(c, aspect, {1.0f, 0.0f, 0.0f}));
+    const std::optional<float> s = axisParam(pivot, x, c.position, cursorRay(c, aspect, {2.0f, 0.0f, 0.0f}));
+    ASSERT_TRUE(s0 && s);
+    const std::optional<float> f = axisScaleFactor(*s0, *s);
+    ASSERT_TRUE(f);
+    EXPECT_NEAR(*f, 2.0f, 1e-3f);
+    const glm::vec3 start{0.5f, 2.0f, 3.0f};
+    const glm::vec3 scaled = scaleDrag(start, 0, *f, 0.0f, 1e-4f);
+    EXPECT_NEAR(scaled.x, 1.0f, 1e-3f);
+    EXPECT_EQ(scaled.y, 2.0f);
+    EXPECT_EQ(scaled.z, 3.0f);
+    EXPECT_NEAR(scaleDrag(start, 0, 2.73f, 0.1f, 1e-4f).x, 1.4f, 1e-6f);  // 1.365 snaps to 1.4
+    EXPECT_EQ(scaleDrag(start, 1, -3.0f, 0.0f, 1e-4f).y, 1e-4f);          // past the pivot: the minimum
+    // The centre handle scales all three; a handle length right doubles.
+    EXPECT_EQ(scaleDrag(start, 3, uniformScaleFactor(100.0f, 0.0f, 100.0f), 0.0f, 1e-4f), start * 2.0f);
+    EXPECT_FALSE(axisScaleFactor(0.0f, 1.0f));
+    // Scale handles follow the object's own axes: after 90 about Z, local X points along world Y.
+    EXPECT_NEAR(localAxis({0.0f, 0.0f, 90.0f}, 0).y, 1.0f, 1e-6f);
+
+    Scene scene = loadDefault().scene();
+    scene.lights.push_back(makeLight(LightType::Spot));
+    const size_t spot = scene.lights.size() - 1;
+    EXPECT_EQ(rotationPath(scene, "volume", 0), "volumes[0].transform.rotation_deg");
+    EXPECT_EQ(scalePath(scene, "volume", 0), "volumes[0].transform.scale");
+    EXPECT_EQ(rotationPath(scene, "light", spot), "lights[" + std::to_string(spot) + "].direction");
+    EXPECT_EQ(scalePath(scene, "light", spot), "");
+    EXPECT_EQ(rotationPath(scene, "light", 0), "");  // the sun: no pivot to turn about
 }

@@ -19,6 +19,7 @@
 #include "core/image.h"
 #include "io/image_io.h"
 #include "io/scene_json.h"
+#include "vdb_test_util.h"
 
 namespace fs = std::filesystem;
 using namespace brume;
@@ -190,5 +191,41 @@ TEST(EditorWindow, KillNineMidEditThenRestartRecoversTheAutosave) {
     ASSERT_EQ(s.value().lights.size(), 4u);
     EXPECT_EQ(s.value().lights[3].name, "lamp");
     EXPECT_FALSE(fs::exists(recovery));  // an orderly exit removes it
+    fs::remove_all(dir);
+}
+
+// Files dropped on the window become `drop PATH` actions (main.cpp's GLFW drop callback); a script
+// drives the same path. A dropped VDB is imported in front of the camera, loaded and rendered; a
+// file that is not a VDB only notifies (the session goes on); the saved scene keeps the VDB's path
+// relative to it, and the recent-files list (a temporary XDG_CONFIG_HOME) records the scene.
+TEST(EditorWindow, DroppedVdbIsImportedAndRenderedAndABadDropOnlyNotifies) {
+    REQUIRE_XVFB();
+    const fs::path dir = tempDir("drop");
+    // A 1.5 m cube of dense fog (sigma_t ~ 2.2/m at the default medium): plainly visible.
+    test::writeGrids(dir / "cube.vdb", {test::makeGrid("density", 0, 15, [](openvdb::Coord) { return 20.0f; },
+                                                       openvdb::math::Transform::createLinearTransform(0.1))});
+    std::ofstream(dir / "notes.vdb") << "not an OpenVDB file\n";
+    std::ofstream(dir / "session.txt") << "screenshot " + (dir / "before.png").string() + "\n"
+                                          "drop " + (dir / "notes.vdb").string() + "\n"
+                                          "drop " + (dir / "cube.vdb").string() + "\n"
+                                          "screenshot " + (dir / "after.png").string() + "\n"
+                                          "save\n"
+                                          "quit\n";
+    std::string log;
+    ASSERT_EQ(sh("XDG_CONFIG_HOME=" + quoted((dir / "config").string()) + " " + kXvfb + editor(dir / "scene.json") +
+                 kSmall + " --hide-ui --script " + quoted((dir / "session.txt").string()), &log), 0) << log;
+    Result<Scene> saved = loadSceneFile((dir / "scene.json").string());
+    ASSERT_TRUE(saved.ok()) << saved.error().message;
+    ASSERT_EQ(saved.value().volumes.size(), 4u);  // the three of the default scene and the cube only
+    EXPECT_EQ(saved.value().volumes[3].type, VolumeType::Vdb);
+    EXPECT_EQ(saved.value().volumes[3].file, "cube.vdb");
+    Result<Image> before = readPngLinear((dir / "before.png").string());
+    Result<Image> after = readPngLinear((dir / "after.png").string());
+    ASSERT_TRUE(before.ok() && after.ok());
+    const double change = relativeMeanAbsError(after.value(), before.value());
+    std::printf("dropped VDB cube: image changed by %.3g (relative mean abs)\n", change);
+    EXPECT_GT(change, 0.02);  // an unloaded (empty) vdb volume would change nothing
+    const std::string recent = readText(dir / "config" / "brume" / "recent.json");
+    EXPECT_NE(recent.find((dir / "scene.json").string()), std::string::npos) << recent;
     fs::remove_all(dir);
 }

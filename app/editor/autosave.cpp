@@ -42,4 +42,10 @@ void Autosave::discard() {
     writtenRevision_ = ~uint64_t(0);
 }
 
+void Autosave::retarget(std::string recoveryPath) {
+    discard();
+    path_ = std::move(recoveryPath);
+    lastWrite_ = -1.0e30;
+}
+
 }  // namespace brume::editor

@@ -24,6 +24,8 @@ public:
     Result<void> tick(const Document& doc, double nowSeconds);
     // Removes the recovery file (clean exit).
     void discard();
+    // Removes the recovery file and writes the next one to `recoveryPath` (another scene opened).
+    void retarget(std::string recoveryPath);
     const std::string& path() const { return path_; }
     int writes() const { return writes_; }
 

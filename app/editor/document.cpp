@@ -87,6 +87,10 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
     // Hidden is editor state the JSON form does not carry; a set never changes the counts.
     Scene& n = s.value();
     for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) n.volumes[i].hidden = current.volumes[i].hidden;
+    // A loaded VDB grid is not in the JSON form either: it stays while its file and grid do.
+    for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i)
+        if (n.volumes[i].file == current.volumes[i].file && n.volumes[i].grid == current.volumes[i].grid)
+            n.volumes[i].density = current.volumes[i].density;
     for (size_t i = 0; i < n.lights.size() && i < current.lights.size(); ++i) n.lights[i].hidden = current.lights[i].hidden;
     for (size_t i = 0; i < n.geometry.size() && i < current.geometry.size(); ++i) n.geometry[i].hidden = current.geometry[i].hidden;
     return s;
@@ -138,6 +142,16 @@ void Document::commit(Scene next) {
 }
 
 void Document::replaceScene(const Scene& scene) { commit(scene); }
+
+void Document::reset(Scene scene, std::string path) {
+    scene_ = std::move(scene);
+    saved_ = scene_;
+    path_ = std::move(path);
+    undo_.clear();
+    redo_.clear();
+    groupDepth_ = 0;
+    ++revision_;
+}
 
 void Document::undo() {
     groupDepth_ = 0;

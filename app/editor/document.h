@@ -55,6 +55,9 @@ public:
 
     // Replaces the scene as one undoable edit (used by recovery and the camera).
     void replaceScene(const Scene& scene);
+    // Starts over with `scene` from `path` (File > New, Open): nothing to undo, not dirty; the
+    // revision still increases, so the viewport re-renders.
+    void reset(Scene scene, std::string path);
     // Marks `scene` as what is on disk (after recovery: the file's scene), keeping the current one.
     void setSavedScene(const Scene& scene) { saved_ = scene; }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -50,8 +51,14 @@ Result<void> Editor::run(const Action& a) {
 }
 
 Result<void> Editor::dispatch(const Action& a) {
+    if (Files::isFileVerb(a.verb)) return fileAction(a);
+    if (a.verb == "drop") {
+        for (const std::string& path : a.args) drop(path);
+        return {};
+    }
     if (Document::isDocumentVerb(a.verb)) {
         Result<void> r = doc_.apply(a);
+        if (r && a.verb == "save") files_.noteRecent(doc_.path());
         // Deleting can leave the selection past the end of its list.
         const Scene& s = doc_.scene();
         const size_t n = selection_.kind == Kind::Volume ? s.volumes.size()
@@ -90,6 +97,32 @@ Result<void> Editor::dispatch(const Action& a) {
     }
     if (a.verb == "quit") return quitRequested = true, Result<void>();
     return Error{"Unknown action \"" + a.verb + "\"."};
+}
+
+// New and Open start a new document: nothing selected, the autosave beside the new file. An
+// import selects the new volume.
+Result<void> Editor::fileAction(const Action& a) {
+    Result<void> r = files_.apply(doc_, a);
+    if (!r) return r;
+    if (a.verb == "import") {
+        selection_ = {Kind::Volume, doc_.scene().volumes.size() - 1};
+    } else {
+        selection_.kind = Kind::None;
+        autosave_.retarget(recoveryPathFor(doc_.path()));
+    }
+    return {};
+}
+
+// A file dropped on the window. Not an edit itself: what it leads to runs as its own action
+// (unrecorded: replaying the drop replays it), and a failure is a notification.
+void Editor::drop(const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    Result<void> r;
+    if (ext == ".vdb") r = fileAction({"import", {"vdb", path}});
+    else if (ext == ".json" && doc_.dirty()) pendingOpen = path;
+    else if (ext == ".json") r = fileAction({"open", {path}});
+    else r = Error{path + ": drop a scene (.json) or an OpenVDB file (.vdb)."};
+    if (!r) files_.message(r.error().message);
 }
 
 Result<void> Editor::setCamera(const Camera& c) {

@@ -12,6 +12,7 @@
 #include "accumulation.h"
 #include "autosave.h"
 #include "document.h"
+#include "files.h"
 #include "gpu/gpu_renderer.h"
 #include "presenter.h"
 
@@ -40,12 +41,16 @@ public:
     //   pick U V (select the volume or light under window fractions U, V from the top-left)
     //   quality low|medium|high|ultra (the viewport's preset; not saved in the scene)
     //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
+    //   new [--discard], open PATH [--discard], import vdb PATH   (files.h; Save goes on to Document)
+    //   drop PATH...   (files dropped on the window: a .vdb is imported, a .json opened, after the
+    //                  unsaved-changes prompt; failures become notifications, never a script error)
     Result<void> run(const Action& action);
     Result<void> run(const std::string& line);
 
     Document& doc() { return doc_; }
     const Document& doc() const { return doc_; }
     Autosave& autosave() { return autosave_; }
+    Files& files() { return files_; }
     Selection& selection() { return selection_; }
     Quality quality() const { return quality_; }
 
@@ -67,6 +72,7 @@ public:
     bool quitRequested = false;
     double waitSeconds = 0.0;
     std::string screenshotRequest;
+    std::string pendingOpen;  // a dropped scene waiting for the unsaved-changes prompt
     double frameMs = 0.0;
     float viewAspect = 16.0f / 9.0f;  // for pick before the first render
 
@@ -75,9 +81,12 @@ private:
     Result<void> camera(const Action& a);
     Result<void> viewAction(const Action& a);
     Result<void> setCamera(const Camera& c);
+    Result<void> fileAction(const Action& a);
+    void drop(const std::string& path);
 
     Document doc_;
     Autosave autosave_;
+    Files files_{RecentFiles(recentFilesPath())};
     Selection selection_;
     Quality quality_;
     Rgba8 viewport_;

@@ -5,17 +5,26 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <vector>
 
 #include <imgui.h>
 
+#include "core/settings.h"
 #include "editor.h"
 #include "view.h"
 
 namespace brume::editor {
 namespace {
 
-constexpr float kSnap = 0.25f;    // [m] with Ctrl held
-constexpr float kHitPx = 6.0f;    // handle pick distance
+constexpr float kSnapMetres = 0.25f;  // translate, Ctrl held
+constexpr float kSnapDegrees = 15.0f;  // rotate, Ctrl held
+constexpr float kSnapScale = 0.1f;     // scale, Ctrl held
+constexpr float kHitPx = 6.0f;         // handle pick distance
+constexpr int kRingSegments = 64;
+const ImU32 kAxisColors[3] = {IM_COL32(230, 60, 60, 255), IM_COL32(60, 210, 60, 255), IM_COL32(70, 110, 240, 255)};
+const ImU32 kHot = IM_COL32(255, 230, 80, 255);
+const ImU32 kCentre = IM_COL32(220, 220, 220, 255);
+
 const char* kindWord(Kind k) { return k == Kind::Volume ? "volume" : k == Kind::Light ? "light" : "geometry"; }
 
 std::string num(float x) {
@@ -30,7 +39,8 @@ float segmentDistance(ImVec2 p, ImVec2 a, ImVec2 b) {
     return glm::length(ap - ab * t);
 }
 
-std::optional<glm::vec3> currentPosition(const Editor& e, const std::string& path) {
+std::optional<glm::vec3> currentVec3(const Editor& e, const std::string& path) {
+    if (path.empty()) return std::nullopt;
     Result<std::string> t = e.doc().valueText(path);
     if (!t) return std::nullopt;
     glm::vec3 v(0.0f);
@@ -38,64 +48,205 @@ std::optional<glm::vec3> currentPosition(const Editor& e, const std::string& pat
     return v;
 }
 
-}  // namespace
+glm::vec3 unit(int i) {
+    glm::vec3 a(0.0f);
+    a[i] = 1.0f;
+    return a;
+}
 
-bool translateGizmo(Editor& e, GizmoState& g, double now) {
-    const Selection sel = e.selection();
-    const Scene& scene = e.doc().scene();
-    const std::string path = sel.kind == Kind::None ? "" : positionPath(scene, kindWord(sel.kind), sel.index);
-    if (path.empty()) return g.axis = -1, false;
-    const std::optional<glm::vec3> pos = currentPosition(e, path);
+// What every mode needs this frame: the view, the pivot on screen, the cursor's ray.
+struct View {
+    const Camera* cam = nullptr;
+    float aspect = 1.0f;
+    ImVec2 size, pivotPx;
+    glm::vec3 pivot{0.0f}, ray{0.0f};
+    float len = 1.0f;  // handle length [m]: a fifth of the view height at the pivot
+    ImDrawList* draw = nullptr;
+    bool canHover = false;
+
+    std::optional<ImVec2> px(glm::vec3 p) const {
+        const std::optional<glm::vec2> w = windowFromWorld(*cam, aspect, p);
+        if (!w) return std::nullopt;
+        return ImVec2(w->x * size.x, w->y * size.y);
+    }
+};
+
+std::optional<View> viewOf(const Camera& cam, glm::vec3 pivot, bool dragging) {
     const ImGuiIO& io = ImGui::GetIO();
-    const ImVec2 size = io.DisplaySize;
-    if (!pos || size.x <= 0 || size.y <= 0) return false;
-    const Camera& cam = scene.camera;
-    const float aspect = size.x / size.y;
-    const std::optional<glm::vec2> o = windowFromWorld(cam, aspect, *pos);
-    if (!o) return false;
-    // Handles a fifth of the view height long, whatever the distance.
-    const float depth = glm::dot(*pos - cam.position, glm::normalize(cam.target - cam.position));
-    const float len = 0.2f * 2.0f * std::tan(glm::radians(cam.fov_y_deg) * 0.5f) * depth;
-    const ImVec2 a(o->x * size.x, o->y * size.y);
-    const ImU32 colors[3] = {IM_COL32(230, 60, 60, 255), IM_COL32(60, 210, 60, 255), IM_COL32(70, 110, 240, 255)};
-    int hovered = -1;
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    for (int i = 0; i < 3; ++i) {
-        glm::vec3 axis(0.0f);
-        axis[i] = 1.0f;
-        const std::optional<glm::vec2> t = windowFromWorld(cam, aspect, *pos + axis * len);
-        if (!t) continue;
-        const ImVec2 b(t->x * size.x, t->y * size.y);
-        if (g.axis < 0 && !io.WantCaptureMouse && segmentDistance(io.MousePos, a, b) < kHitPx) hovered = i;
-        const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
-        draw->AddLine(a, b, hot ? IM_COL32(255, 230, 80, 255) : colors[i], hot ? 4.0f : 2.5f);
-        draw->AddCircleFilled(b, hot ? 6.0f : 4.5f, hot ? IM_COL32(255, 230, 80, 255) : colors[i]);
-    }
+    View v;
+    v.cam = &cam;
+    v.size = io.DisplaySize;
+    if (v.size.x <= 0 || v.size.y <= 0) return std::nullopt;
+    v.aspect = v.size.x / v.size.y;
+    v.pivot = pivot;
+    const std::optional<glm::vec2> o = windowFromWorld(cam, v.aspect, pivot);
+    if (!o) return std::nullopt;
+    v.pivotPx = ImVec2(o->x * v.size.x, o->y * v.size.y);
+    const float depth = glm::dot(pivot - cam.position, glm::normalize(cam.target - cam.position));
+    v.len = 0.2f * 2.0f * std::tan(glm::radians(cam.fov_y_deg) * 0.5f) * depth;
+    v.ray = rayDirection(cam, v.aspect, io.MousePos.x / v.size.x, io.MousePos.y / v.size.y);
+    v.draw = ImGui::GetBackgroundDrawList();
+    v.canHover = !dragging && !io.WantCaptureMouse;
+    return v;
+}
+
+void setVec3(Editor& e, const std::string& path, glm::vec3 v, glm::vec3 current, double now) {
+    if (v == current) return;
+    if (Result<void> r = e.run("set " + path + " " + num(v.x) + " " + num(v.y) + " " + num(v.z)); !r)
+        e.notify(r.error().message, now);
+}
+
+// Starts a drag on the hovered handle (`begin`), ends it on release (`end`); true while dragging.
+// The release frame still belongs to the gizmo (callers return true), so the viewport neither
+// picks nor ends a group it did not begin.
+bool pressAndRelease(Editor& e, GizmoState& g, int hovered, const std::string& path, glm::vec3 value) {
     if (g.axis < 0 && hovered >= 0 && ImGui::IsMouseClicked(0)) {
-        glm::vec3 axis(0.0f);
-        axis[hovered] = 1.0f;
-        const glm::vec3 dir = rayDirection(cam, aspect, io.MousePos.x / size.x, io.MousePos.y / size.y);
-        if (std::optional<float> s0 = axisParam(*pos, axis, cam.position, dir)) {
-            g = {hovered, *pos, *s0, path};
-            (void)e.run("begin");
-        }
+        const ImVec2 m = ImGui::GetIO().MousePos;
+        g.axis = hovered, g.start = value, g.path = path, g.pressPx = {m.x, m.y};
+        (void)e.run("begin");
     }
-    if (g.axis < 0) return hovered >= 0 && !ImGui::IsAnyMouseDown();
-    glm::vec3 axis(0.0f);
-    axis[g.axis] = 1.0f;
-    const glm::vec3 dir = rayDirection(cam, aspect, io.MousePos.x / size.x, io.MousePos.y / size.y);
-    if (std::optional<float> s = axisParam(g.start, axis, cam.position, dir)) {
-        const glm::vec3 p = axisDrag(g.start, axis, g.s0, *s, io.KeyCtrl ? kSnap : 0.0f);
-        if (p != *pos) {
-            if (Result<void> r = e.run("set " + g.path + " " + num(p.x) + " " + num(p.y) + " " + num(p.z)); !r)
-                e.notify(r.error().message, now);
-        }
-    }
-    if (!ImGui::IsMouseDown(0)) {
+    if (g.axis >= 0 && !ImGui::IsMouseDown(0)) {
         (void)e.run("end");
         g.axis = -1;
     }
+    return g.axis >= 0;
+}
+
+int translateHandles(const View& v, const GizmoState& g) {
+    int hovered = -1;
+    for (int i = 0; i < 3; ++i) {
+        const std::optional<ImVec2> b = v.px(v.pivot + unit(i) * v.len);
+        if (!b) continue;
+        if (v.canHover && segmentDistance(ImGui::GetIO().MousePos, v.pivotPx, *b) < kHitPx) hovered = i;
+        const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
+        v.draw->AddLine(v.pivotPx, *b, hot ? kHot : kAxisColors[i], hot ? 4.0f : 2.5f);
+        v.draw->AddCircleFilled(*b, hot ? 6.0f : 4.5f, hot ? kHot : kAxisColors[i]);
+    }
+    return hovered;
+}
+
+bool translate(Editor& e, GizmoState& g, const View& v, const std::string& path, double now) {
+    const int hovered = translateHandles(v, g);
+    const bool wasIdle = g.axis < 0;
+    if (!pressAndRelease(e, g, hovered, path, v.pivot)) return !wasIdle || (hovered >= 0 && !ImGui::IsAnyMouseDown());
+    const glm::vec3 axis = unit(g.axis);
+    if (wasIdle) {
+        const std::optional<float> s0 = axisParam(v.pivot, axis, v.cam->position, v.ray);
+        if (!s0) return (void)e.run("end"), g.axis = -1, false;  // along the view: no stable drag
+        g.s0 = *s0;
+    }
+    if (std::optional<float> s = axisParam(g.start, axis, v.cam->position, v.ray))
+        setVec3(e, g.path, axisDrag(g.start, axis, g.s0, *s, ImGui::GetIO().KeyCtrl ? kSnapMetres : 0.0f), v.pivot, now);
     return true;
+}
+
+int rotateHandles(const View& v, const GizmoState& g) {
+    int hovered = -1;
+    for (int i = 0; i < 3; ++i) {
+        const glm::vec3 u = unit((i + 1) % 3), w = unit((i + 2) % 3);
+        std::vector<ImVec2> pts;
+        for (int k = 0; k <= kRingSegments; ++k) {
+            const float t = 6.2831853f * static_cast<float>(k) / kRingSegments;
+            if (std::optional<ImVec2> p = v.px(v.pivot + (u * std::cos(t) + w * std::sin(t)) * v.len)) pts.push_back(*p);
+        }
+        for (size_t k = 1; k < pts.size() && v.canHover; ++k)
+            if (segmentDistance(ImGui::GetIO().MousePos, pts[k - 1], pts[k]) < kHitPx) hovered = i;
+        const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
+        v.draw->AddPolyline(pts.data(), static_cast<int>(pts.size()), hot ? kHot : kAxisColors[i], 0, hot ? 4.0f : 2.5f);
+    }
+    return hovered;
+}
+
+bool rotate(Editor& e, GizmoState& g, const View& v, const std::string& path, glm::vec3 value, bool isDirection,
+            double now) {
+    const int hovered = rotateHandles(v, g);
+    const bool wasIdle = g.axis < 0;
+    if (!pressAndRelease(e, g, hovered, path, value)) return !wasIdle || (hovered >= 0 && !ImGui::IsAnyMouseDown());
+    const std::optional<float> a = ringAngle(v.pivot, unit(g.axis), v.cam->position, v.ray);
+    if (wasIdle) {
+        if (!a) return (void)e.run("end"), g.axis = -1, false;  // the ring is edge-on
+        g.prevAngle = *a, g.totalAngle = 0.0f;
+    } else if (a) {
+        g.totalAngle += wrapDegrees(*a - g.prevAngle);
+        g.prevAngle = *a;
+    }
+    const float angle = snapped(g.totalAngle, ImGui::GetIO().KeyCtrl ? kSnapDegrees : 0.0f);
+    // A direction stays a unit vector; its components within the setting's [-1, 1].
+    const glm::vec3 next = isDirection ? glm::clamp(rotateDirection(g.start, g.axis, angle), -1.0f, 1.0f)
+                                       : rotateEuler(g.start, g.axis, angle);
+    setVec3(e, g.path, next, value, now);
+    return true;
+}
+
+int scaleHandles(const View& v, const GizmoState& g, glm::vec3 rotationDeg) {
+    int hovered = -1;
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    for (int i = 0; i < 3; ++i) {
+        const std::optional<ImVec2> b = v.px(v.pivot + localAxis(rotationDeg, i) * v.len);
+        if (!b) continue;
+        if (v.canHover && segmentDistance(m, v.pivotPx, *b) < kHitPx) hovered = i;
+        const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
+        const float r = hot ? 6.0f : 4.5f;
+        v.draw->AddLine(v.pivotPx, *b, hot ? kHot : kAxisColors[i], hot ? 4.0f : 2.5f);
+        v.draw->AddRectFilled(ImVec2(b->x - r, b->y - r), ImVec2(b->x + r, b->y + r), hot ? kHot : kAxisColors[i]);
+    }
+    // The centre handle wins over the axes' inner ends.
+    if (v.canHover && std::abs(m.x - v.pivotPx.x) < 2.0f * kHitPx && std::abs(m.y - v.pivotPx.y) < 2.0f * kHitPx) hovered = 3;
+    const bool hot = g.axis == 3 || (g.axis < 0 && hovered == 3);
+    const float r = 7.0f;
+    v.draw->AddRect(ImVec2(v.pivotPx.x - r, v.pivotPx.y - r), ImVec2(v.pivotPx.x + r, v.pivotPx.y + r), hot ? kHot : kCentre, 0.0f, 0, 2.5f);
+    return hovered;
+}
+
+bool scale(Editor& e, GizmoState& g, const View& v, const std::string& path, glm::vec3 value, glm::vec3 rotationDeg,
+           double now) {
+    const int hovered = scaleHandles(v, g, rotationDeg);
+    const bool wasIdle = g.axis < 0;
+    if (!pressAndRelease(e, g, hovered, path, value)) return !wasIdle || (hovered >= 0 && !ImGui::IsAnyMouseDown());
+    std::optional<float> factor;
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    if (g.axis == 3) {
+        const glm::vec2 pivotPx(v.pivotPx.x, v.pivotPx.y);
+        const std::optional<ImVec2> tip = v.px(v.pivot + glm::normalize(v.cam->up) * v.len);
+        const float lenPx = tip ? glm::length(glm::vec2(tip->x, tip->y) - pivotPx) : 100.0f;
+        factor = uniformScaleFactor(m.x - g.pressPx.x, g.pressPx.y - m.y, lenPx);
+    } else {
+        const glm::vec3 axis = localAxis(rotationDeg, g.axis);
+        const std::optional<float> s = axisParam(v.pivot, axis, v.cam->position, v.ray);
+        if (wasIdle) {
+            if (!s) return (void)e.run("end"), g.axis = -1, false;
+            g.s0 = *s;
+        }
+        if (s) factor = axisScaleFactor(g.s0, *s);
+    }
+    if (factor) {
+        const float snap = ImGui::GetIO().KeyCtrl ? kSnapScale : 0.0f;
+        setVec3(e, g.path, scaleDrag(g.start, g.axis, *factor, snap, static_cast<float>(settings::transform_scale.min)), value, now);
+    }
+    return true;
+}
+
+}  // namespace
+
+bool transformGizmo(Editor& e, GizmoState& g, double now) {
+    const Selection sel = e.selection();
+    const Scene& scene = e.doc().scene();
+    const std::string kind = sel.kind == Kind::None ? "" : kindWord(sel.kind);
+    const std::optional<glm::vec3> pivot = kind.empty() ? std::nullopt : currentVec3(e, positionPath(scene, kind, sel.index));
+    const std::optional<View> v = pivot ? viewOf(scene.camera, *pivot, g.axis >= 0) : std::nullopt;
+    if (!v) {
+        if (g.axis >= 0) (void)e.run("end");  // the object went away mid-drag (undo, delete)
+        g.axis = -1;
+        return false;
+    }
+    if (g.mode == GizmoMode::Translate) return translate(e, g, *v, positionPath(scene, kind, sel.index), now);
+    const std::string rotPath = rotationPath(scene, kind, sel.index);
+    const std::optional<glm::vec3> rot = currentVec3(e, rotPath);
+    if (!rot) return false;
+    if (g.mode == GizmoMode::Rotate) return rotate(e, g, *v, rotPath, *rot, sel.kind == Kind::Light, now);
+    const std::string sPath = scalePath(scene, kind, sel.index);
+    const std::optional<glm::vec3> s = currentVec3(e, sPath);
+    return s && scale(e, g, *v, sPath, *s, *rot, now);
 }
 
 }  // namespace brume::editor

@@ -116,12 +116,21 @@ int main(int argc, char** argv) {
 
 namespace {
 
-// The document to edit: the scene file (errors exit 2 like `brume`), or an empty scene.
-Result<Document> openDocument(const Options& o) {
+// The document to edit: the scene file with its VDB grids (scene errors exit 2 like `brume`; a
+// grid that cannot be read is a notification, see files.h), or an empty scene.
+Result<Document> openDocument(const Options& o, std::vector<std::string>& warnings) {
     if (o.scene.empty()) return Document(Scene{}, "");
-    Result<Scene> s = loadSceneFile(o.scene);
+    Result<OpenedScene> s = openSceneFile(o.scene);
     if (!s) return s.error();
-    return Document(s.value(), fs::absolute(o.scene).string());
+    warnings = s.value().warnings;
+    return Document(s.value().scene, s.value().path);
+}
+
+// Files dropped on the window, run as `drop PATH` actions by the loop (GLFW calls back from
+// glfwPollEvents on this thread, with no context to spare).
+std::vector<std::string> droppedPaths;
+void onDrop(GLFWwindow*, int count, const char** paths) {
+    for (int i = 0; i < count; ++i) droppedPaths.emplace_back(paths[i]);
 }
 
 // Runs script lines until one asks to wait or the script ends; one document action per frame, so
@@ -145,8 +154,8 @@ void offerRecovery(Editor& editor, UiState& ui, const Options& o, double now) {
     if (!fs::exists(path)) return;
     if (o.discardRecovery) return editor.autosave().discard();
     if (!o.recover) return void(ui.recoveryPath = path);
-    Result<Scene> s = loadSceneFile(path);
-    if (s) editor.doc().replaceScene(s.value());
+    Result<OpenedScene> s = openSceneFile(path);  // with its VDB grids
+    if (s) editor.doc().replaceScene(s.value().scene);
     else editor.notify("The autosave could not be recovered: " + s.error().message, now);
 }
 
@@ -161,6 +170,9 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
     while (true) {
         glfwPollEvents();
         const double now = seconds();
+        if (!droppedPaths.empty()) {
+            (void)editor.run(Action{"drop", std::exchange(droppedPaths, {})});  // failures are notifications
+        }
         if (glfwWindowShouldClose(presenter.window())) {
             glfwSetWindowShouldClose(presenter.window(), GLFW_FALSE);
             ui.closeRequested = true;
@@ -210,7 +222,8 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
 }  // namespace
 
 int runEditor(const Options& o) {
-    Result<Document> doc = openDocument(o);
+    std::vector<std::string> warnings;
+    Result<Document> doc = openDocument(o, warnings);
     if (!doc) return fail(doc.error().message, 2);
     Quality quality = doc.value().scene().render.quality;
     if (!o.quality.empty() && !parseQuality(o.quality, quality))
@@ -219,6 +232,9 @@ int runEditor(const Options& o) {
     if (!script) return fail(script.error().message, 2);
     const std::string recoveryPath = recoveryPathFor(doc.value().path());
     Editor editor(std::move(doc.value()), Autosave(recoveryPath, o.autosaveSeconds), quality);
+    for (std::string& w : editor.files().recent().load()) editor.files().message(std::move(w));
+    for (std::string& w : warnings) editor.files().message(std::move(w));
+    editor.files().noteRecent(editor.doc().path());
     std::ofstream record;
     if (!o.record.empty()) {
         record.open(o.record, std::ios::app);
@@ -236,6 +252,7 @@ int runEditor(const Options& o) {
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // panel layout is not persisted (tests stay reproducible)
     ImGui_ImplGlfw_InitForVulkan(window.handle, true);
+    glfwSetDropCallback(window.handle, onDrop);
     int code = 0;
     {
         Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, o.validation);

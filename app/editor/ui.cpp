@@ -253,12 +253,17 @@ void help(UiState& ui) {
         {"Left click (viewport)", "select the volume or light under the cursor"},
         {"Right drag", "look around (fly); with W A S D / Q E flies"},
         {"Middle or Shift+left drag", "pan"},
-        {"W A S D, Q E (Shift: 4x)", "fly forward, left, back, right, down, up"},
+        {"Right button + W A S D, Q E", "fly forward, left, back, right, down, up (Shift: 4x)"},
+        {"W / E / R", "gizmo: translate (world axes) / rotate (world rings) / scale (own axes)"},
+        {"Drag a gizmo handle", "one undo step; Ctrl snaps to 0.25 m / 15 deg / 0.1"},
+        {"Scale gizmo centre square", "uniform scale (drag right or up to grow)"},
         {"F", "frame the selection"},
         {"H / Alt+H", "hide the selection / show everything"},
         {"Mouse wheel", "zoom"},
         {"Ctrl+Z / Ctrl+Shift+Z, Ctrl+Y", "undo / redo (a drag is one step)"},
         {"Ctrl+S", "save (atomic); File > Save As for a new path"},
+        {"Ctrl+N / Ctrl+O", "new scene (camera, sun, ground) / open (asks about unsaved changes)"},
+        {"File > Import VDB, or drop", "a .vdb dropped on the window is imported, a .json opened"},
         {"Ctrl+D / Delete", "duplicate / delete the selection"},
         {"Escape", "select nothing (scene settings)"},
         {"F1", "this help"},
@@ -269,12 +274,9 @@ void help(UiState& ui) {
 }
 
 void menuBar(Editor& e, UiState& ui, double now) {
-    bool openSaveAs = false;
     if (ImGui::BeginMainMenuBar()) {
         if (ImGui::BeginMenu("File")) {
-            if (ImGui::MenuItem("Save", "Ctrl+S")) runOrNotify(e, "save", now);
-            if (ImGui::MenuItem("Save As...")) openSaveAs = true;
-            if (ImGui::MenuItem("Quit")) ui.closeRequested = true;
+            fileMenuItems(e, ui.files, ui.closeRequested, now);
             ImGui::EndMenu();
         }
         if (ImGui::BeginMenu("Edit")) {
@@ -291,21 +293,6 @@ void menuBar(Editor& e, UiState& ui, double now) {
         ImGui::TextDisabled("%s", title.c_str());
         ImGui::EndMainMenuBar();
     }
-    if (openSaveAs) {
-        std::snprintf(ui.saveAsPath, sizeof ui.saveAsPath, "%s", e.doc().path().c_str());
-        ImGui::OpenPopup("Save As");
-    }
-    if (ImGui::BeginPopupModal("Save As", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::InputText("file", ui.saveAsPath, sizeof ui.saveAsPath);
-        if (ImGui::Button("Save")) {
-            Result<void> r = e.run(Action{"save", {ui.saveAsPath}});
-            if (!r) e.notify(r.error().message, now);
-            ImGui::CloseCurrentPopup();
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
-        ImGui::EndPopup();
-    }
 }
 
 void prompts(Editor& e, UiState& ui, double now) {
@@ -313,8 +300,8 @@ void prompts(Editor& e, UiState& ui, double now) {
     if (ImGui::BeginPopupModal("Recover unsaved changes?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("The last session ended with unsaved changes, autosaved to\n%s", ui.recoveryPath.c_str());
         if (ImGui::Button("Recover")) {
-            Result<Scene> s = loadSceneFile(ui.recoveryPath);
-            if (s) e.doc().replaceScene(s.value());
+            Result<OpenedScene> s = openSceneFile(ui.recoveryPath);  // with its VDB grids
+            if (s) e.doc().replaceScene(s.value().scene);
             else e.notify(s.error().message, now);
             ui.recoveryPath.clear();
             ImGui::CloseCurrentPopup();
@@ -367,6 +354,7 @@ void drawUi(Editor& e, UiState& ui, double now) {
     inspector(e, now);
     stats(e, ui, now);
     help(ui);
+    drawFiles(e, ui.files, now);
     notifications(e, now);
     prompts(e, ui, now);
 }
@@ -383,15 +371,17 @@ void showAll(Editor& e, double now) {
     (void)e.run("end");
 }
 
-// W A S D / Q E fly at 2 m/s (Shift: 8); holding them is one undo step, like a drag.
+// W A S D / Q E fly at 2 m/s (Shift: 8) while the right button is held (without it W E R pick
+// the gizmo's mode, as in DCC tools); holding them is one undo step, like a drag.
 void flyKeys(Editor& e, UiState& ui, double now) {
     ImGuiIO& io = ImGui::GetIO();
     if (io.KeyCtrl) return;
-    auto down = [](int key) { return ImGui::IsKeyDown(key) ? 1.0f : 0.0f; };
+    const bool look = ImGui::IsMouseDown(1);
+    auto down = [look](int key) { return look && ImGui::IsKeyDown(key) ? 1.0f : 0.0f; };
     const glm::vec3 dir{down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
                         down(GLFW_KEY_W) - down(GLFW_KEY_S)};
-    const bool held = ImGui::IsKeyDown(GLFW_KEY_W) || ImGui::IsKeyDown(GLFW_KEY_A) || ImGui::IsKeyDown(GLFW_KEY_S) ||
-                      ImGui::IsKeyDown(GLFW_KEY_D) || ImGui::IsKeyDown(GLFW_KEY_Q) || ImGui::IsKeyDown(GLFW_KEY_E);
+    const bool held = look && (ImGui::IsKeyDown(GLFW_KEY_W) || ImGui::IsKeyDown(GLFW_KEY_A) || ImGui::IsKeyDown(GLFW_KEY_S) ||
+                               ImGui::IsKeyDown(GLFW_KEY_D) || ImGui::IsKeyDown(GLFW_KEY_Q) || ImGui::IsKeyDown(GLFW_KEY_E));
     if (held && !ui.flying) (void)e.run("begin");
     if (!held && ui.flying) (void)e.run("end");
     ui.flying = held;
@@ -418,10 +408,15 @@ void handleViewportInput(Editor& e, UiState& ui, double now) {
         if (!ctrl && ImGui::IsKeyPressed(GLFW_KEY_F) && !target.empty()) runOrNotify(e, "frame", now);
         if (!ctrl && !io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H) && !target.empty()) runOrNotify(e, "hide " + target, now);
         if (!ctrl && io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H)) showAll(e, now);
+        if (!ctrl && !ImGui::IsMouseDown(1) && ui.gizmo.axis < 0) {
+            if (ImGui::IsKeyPressed(GLFW_KEY_W)) ui.gizmo.mode = GizmoMode::Translate;
+            if (ImGui::IsKeyPressed(GLFW_KEY_E)) ui.gizmo.mode = GizmoMode::Rotate;
+            if (ImGui::IsKeyPressed(GLFW_KEY_R)) ui.gizmo.mode = GizmoMode::Scale;
+        }
     }
     if (!io.WantCaptureKeyboard) flyKeys(e, ui, now);
     // Drawn even under the panels; it takes the mouse only when ImGui does not want it.
-    if (translateGizmo(e, ui.gizmo, now) || io.WantCaptureMouse) return;
+    if (transformGizmo(e, ui.gizmo, now) || io.WantCaptureMouse) return;
     // A drag is one undo step: begin on press, end on release. A click that did not move picks.
     for (int b = 0; b < 3; ++b) {
         if (ImGui::IsMouseClicked(b)) (void)e.run("begin");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "editor.h"
+#include "file_browser.h"
 #include "gizmo.h"
 
 namespace brume::editor {
@@ -16,7 +17,7 @@ struct UiState {
     GizmoState gizmo;
     bool flying = false;           // a fly key is held: its moves are one undo step   // the user chose Save or Discard
     std::string recoveryPath;      // non-empty: offer to recover this autosave
-    char saveAsPath[512] = {};
+    FilesUi files;                 // File menu: browser, New/Open prompt (file_browser.h)
 };
 
 void drawUi(Editor& editor, UiState& ui, double now);

@@ -1,0 +1,216 @@
+// The editor's files without a window: New, Open and VDB import through the same Files::apply that
+// Editor::run forwards `new`, `open` and `import` to, the recent-files list, and the browser's
+// directory listing.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "app/editor/files.h"
+#include "app/editor/view.h"
+#include "io/scene_json.h"
+#include "vdb_test_util.h"
+
+namespace fs = std::filesystem;
+using namespace brume;
+using namespace brume::editor;
+
+namespace {
+
+const std::string kDefaultScene = std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json";
+
+fs::path tempDir(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("brume_files_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+Result<void> run(Files& files, Document& doc, const std::string& line) {
+    Result<Action> a = parseAction(line);
+    if (!a) return a.error();
+    if (Files::isFileVerb(a.value().verb)) return files.apply(doc, a.value());
+    return doc.apply(a.value());
+}
+
+Document defaultAt(const fs::path& path) {
+    fs::copy_file(kDefaultScene, path, fs::copy_options::overwrite_existing);
+    Result<Scene> s = loadSceneFile(path.string());
+    EXPECT_TRUE(s.ok());
+    return Document(s.value(), path.string());
+}
+
+// A 16^3-voxel fog cube of density 1, 0.1 m voxels, written with the OpenVDB API.
+void writeCube(const fs::path& path) {
+    test::writeGrids(path, {test::makeGrid("density", 0, 15, [](openvdb::Coord) { return 1.0f; },
+                                           openvdb::math::Transform::createLinearTransform(0.1))});
+}
+
+}  // namespace
+
+TEST(EditorFiles, NewAndOpenRefuseUnsavedChangesUnlessDiscarded) {
+    const fs::path dir = tempDir("open");
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "a.json");
+    fs::copy_file(kDefaultScene, dir / "b.json");
+    ASSERT_TRUE(run(files, doc, "set volumes[0].medium.phase_g 0.5").ok());
+    const Scene edited = doc.scene();
+
+    Result<void> r = run(files, doc, "open " + (dir / "b.json").string());
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("unsaved changes"), std::string::npos) << r.error().message;
+    EXPECT_TRUE(doc.scene() == edited);  // refused: nothing changed
+    EXPECT_EQ(doc.path(), (dir / "a.json").string());
+    EXPECT_FALSE(run(files, doc, "new").ok());
+    EXPECT_TRUE(doc.dirty());
+
+    ASSERT_TRUE(run(files, doc, "open " + (dir / "b.json").string() + " --discard").ok());
+    EXPECT_EQ(doc.path(), (dir / "b.json").string());
+    EXPECT_FALSE(doc.dirty());
+    EXPECT_FALSE(doc.canUndo());  // no undo across files
+    EXPECT_EQ(doc.scene().volumes[0].medium.phase_g, loadSceneFile(kDefaultScene).value().volumes[0].medium.phase_g);
+
+    // A clean document opens and starts anew without asking; New: a camera, a sun, a ground, no fog.
+    ASSERT_TRUE(run(files, doc, "new").ok());
+    EXPECT_EQ(doc.path(), "");
+    EXPECT_FALSE(doc.dirty());
+    ASSERT_EQ(doc.scene().lights.size(), 1u);
+    EXPECT_EQ(doc.scene().lights[0].type, LightType::Directional);
+    ASSERT_EQ(doc.scene().geometry.size(), 1u);
+    EXPECT_EQ(doc.scene().geometry[0].type, GeometryType::Plane);
+    EXPECT_TRUE(doc.scene().volumes.empty());
+    // A bad file is an error naming it, and the document stays as it was.
+    std::ofstream(dir / "bad.json") << "{ \"version\": 1, \"nonsense\": 3 }";
+    r = run(files, doc, "open " + (dir / "bad.json").string());
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("bad.json"), std::string::npos) << r.error().message;
+    EXPECT_EQ(doc.path(), "");
+    fs::remove_all(dir);
+}
+
+TEST(EditorFiles, RecentFilesAreNewestFirstTenPersistedAndPruned) {
+    const fs::path dir = tempDir("recent");
+    ::setenv("XDG_CONFIG_HOME", (dir / "config").c_str(), 1);
+    const std::string store = recentFilesPath();
+    EXPECT_EQ(store, (dir / "config" / "brume" / "recent.json").string());
+    Files files{RecentFiles(store)};
+    Document doc;
+    for (int i = 0; i < 12; ++i) {
+        const fs::path p = dir / ("s" + std::to_string(i) + ".json");
+        fs::copy_file(kDefaultScene, p);
+        ASSERT_TRUE(run(files, doc, "open " + p.string()).ok());
+    }
+    files.noteRecent((dir / "s10.json").string());  // saved again: moves to the front, once
+    const std::vector<std::string> want = {"s10", "s11", "s9", "s8", "s7", "s6", "s5", "s4", "s3", "s2"};
+    auto names = [](const std::vector<std::string>& paths) {
+        std::vector<std::string> out;
+        for (const std::string& p : paths) out.push_back(fs::path(p).stem().string());
+        return out;
+    };
+    EXPECT_EQ(names(files.recent().paths()), want);
+
+    // Persisted: a new session reads the same list; a file deleted meanwhile is pruned with a message.
+    fs::remove(dir / "s9.json");
+    RecentFiles next(store);
+    const std::vector<std::string> gone = next.load();
+    ASSERT_EQ(gone.size(), 1u);
+    EXPECT_NE(gone[0].find("s9.json"), std::string::npos) << gone[0];
+    std::vector<std::string> pruned = want;
+    std::erase(pruned, "s9");
+    EXPECT_EQ(names(next.paths()), pruned);
+    RecentFiles again(store);  // the pruning was written back
+    EXPECT_TRUE(again.load().empty());
+    EXPECT_EQ(names(again.paths()), pruned);
+    ::unsetenv("XDG_CONFIG_HOME");
+    fs::remove_all(dir);
+}
+
+TEST(EditorFiles, ImportVdbPlacesItInFrontOfTheCameraRelativeToTheScene) {
+    const fs::path dir = tempDir("import");
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "scene.json");
+    fs::create_directories(dir / "vdb");
+    writeCube(dir / "vdb" / "cube.vdb");
+    const size_t n = doc.scene().volumes.size();
+    ASSERT_TRUE(run(files, doc, "import vdb " + (dir / "vdb" / "cube.vdb").string()).ok());
+    ASSERT_EQ(doc.scene().volumes.size(), n + 1);
+    const Volume v = doc.scene().volumes[n];
+    EXPECT_EQ(v.type, VolumeType::Vdb);
+    EXPECT_EQ(v.file, "vdb/cube.vdb");  // relative to the scene's folder
+    ASSERT_TRUE(v.density && !v.density->empty());
+    Result<Bounds> b = objectBounds(doc.scene(), "volume", n);
+    ASSERT_TRUE(b.ok());
+    EXPECT_LT(glm::length(b.value().center - doc.scene().camera.target), 1e-3f);  // centred on the target
+    // The cube's 16 voxels of 0.1 m, give or take the voxel of trilinear support around them.
+    EXPECT_NEAR(b.value().radius, 0.5f * std::sqrt(3.0f) * 1.6f, 0.5f * std::sqrt(3.0f) * 0.1f + 1e-4f);
+
+    // An edit keeps the loaded grid (the JSON form does not carry it); undo removes the import.
+    ASSERT_TRUE(run(files, doc, "set volumes[" + std::to_string(n) + "].transform.translation 0 1 0").ok());
+    EXPECT_EQ(doc.scene().volumes[n].density, v.density);
+    EXPECT_TRUE(objectBounds(doc.scene(), "volume", n).ok());
+    ASSERT_TRUE(run(files, doc, "undo").ok());
+    ASSERT_TRUE(run(files, doc, "undo").ok());
+    EXPECT_EQ(doc.scene().volumes.size(), n);
+    ASSERT_TRUE(run(files, doc, "redo").ok());
+
+    // Saved and reopened, the grid is read again from the relative path.
+    ASSERT_TRUE(run(files, doc, "save").ok());
+    ASSERT_TRUE(run(files, doc, "open " + (dir / "scene.json").string()).ok());
+    ASSERT_EQ(doc.scene().volumes.size(), n + 1);
+    EXPECT_TRUE(doc.scene().volumes[n].density && !doc.scene().volumes[n].density->empty());
+    EXPECT_TRUE(files.takeMessages().empty());
+
+    // A file outside the scene's folder is kept absolute.
+    const fs::path outside = tempDir("import_outside") / "far.vdb";
+    writeCube(outside);
+    ASSERT_TRUE(run(files, doc, "import vdb " + outside.string()).ok());
+    EXPECT_EQ(doc.scene().volumes.back().file, outside.string());
+    fs::remove_all(outside.parent_path());
+    fs::remove_all(dir);
+}
+
+TEST(EditorFiles, ImportingANonVdbOrAMissingFileIsAnErrorAndChangesNothing) {
+    const fs::path dir = tempDir("badimport");
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "scene.json");
+    const Scene before = doc.scene();
+    std::ofstream(dir / "text.vdb") << "this is not an OpenVDB file\n";
+    for (const std::string name : {"text.vdb", "missing.vdb"}) {
+        Result<void> r = run(files, doc, "import vdb " + (dir / name).string());
+        ASSERT_FALSE(r.ok()) << name;
+        EXPECT_NE(r.error().message.find(name), std::string::npos) << r.error().message;
+        EXPECT_TRUE(doc.scene() == before);
+        EXPECT_FALSE(doc.dirty());
+    }
+    // A scene whose vdb file went missing still opens (to fix it), with the volume empty and a message.
+    ASSERT_TRUE(run(files, doc, "add volume vdb smoke missing.vdb").ok());
+    ASSERT_TRUE(run(files, doc, "save").ok());
+    ASSERT_TRUE(run(files, doc, "open " + (dir / "scene.json").string()).ok());
+    const std::vector<std::string> messages = files.takeMessages();
+    ASSERT_EQ(messages.size(), 1u);
+    EXPECT_NE(messages[0].find("missing.vdb"), std::string::npos) << messages[0];
+    EXPECT_FALSE(doc.scene().volumes.back().density);
+    fs::remove_all(dir);
+}
+
+TEST(EditorFiles, TheBrowserListsFoldersFirstThenFilesOfTheExtension) {
+    const fs::path dir = tempDir("list");
+    fs::create_directories(dir / "zeta");
+    fs::create_directories(dir / "alpha");
+    fs::create_directories(dir / ".hidden");
+    for (const char* f : {"b.json", "a.json", "c.vdb", "notes.txt"}) std::ofstream(dir / f) << "x";
+    Result<std::vector<DirEntry>> json = listDirectory(dir.string(), ".json");
+    ASSERT_TRUE(json.ok());
+    std::vector<std::string> names;
+    for (const DirEntry& e : json.value()) names.push_back(e.name + (e.isDir ? "/" : ""));
+    EXPECT_EQ(names, (std::vector<std::string>{"alpha/", "zeta/", "a.json", "b.json"}));
+    Result<std::vector<DirEntry>> vdb = listDirectory(dir.string(), ".vdb");
+    ASSERT_TRUE(vdb.ok());
+    EXPECT_EQ(vdb.value().back().name, "c.vdb");
+    EXPECT_EQ(vdb.value().size(), 3u);
+    EXPECT_FALSE(listDirectory((dir / "nope").string(), "").ok());
+    fs::remove_all(dir);
+}
