@@ -96,6 +96,12 @@ Result<void> Editor::dispatch(const Action& a) {
         return {};
     }
     if (a.verb == "quit") return quitRequested = true, Result<void>();
+    if (a.verb == "gizmo") {
+        const std::string m = a.args.size() == 1 ? a.args[0] : "";
+        if (m != "translate" && m != "rotate" && m != "scale") return Error{"gizmo takes one of: translate, rotate, scale."};
+        gizmoMode = m == "translate" ? GizmoMode::Translate : m == "rotate" ? GizmoMode::Rotate : GizmoMode::Scale;
+        return {};
+    }
     return Error{"Unknown action \"" + a.verb + "\"."};
 }
 

@@ -13,6 +13,7 @@
 #include "autosave.h"
 #include "document.h"
 #include "files.h"
+#include "gizmo_math.h"
 #include "gpu/gpu_renderer.h"
 #include "presenter.h"
 
@@ -41,6 +42,7 @@ public:
     //   pick U V (select the volume or light under window fractions U, V from the top-left)
     //   quality low|medium|high|ultra (the viewport's preset; not saved in the scene)
     //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
+    //   gizmo translate|rotate|scale (the gizmo's mode: W / E / R)
     //   new [--discard], open PATH [--discard], import vdb PATH   (files.h; Save goes on to Document)
     //   drop PATH...   (files dropped on the window: a .vdb is imported, a .json opened, after the
     //                  unsaved-changes prompt; failures become notifications, never a script error)
@@ -72,6 +74,7 @@ public:
     bool quitRequested = false;
     double waitSeconds = 0.0;
     std::string screenshotRequest;
+    GizmoMode gizmoMode = GizmoMode::Translate;
     std::string pendingOpen;  // a dropped scene waiting for the unsaved-changes prompt
     double frameMs = 0.0;
     float viewAspect = 16.0f / 9.0f;  // for pick before the first render

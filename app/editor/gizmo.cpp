@@ -112,17 +112,40 @@ bool pressAndRelease(Editor& e, GizmoState& g, int hovered, const std::string& p
     return g.axis >= 0;
 }
 
-int translateHandles(const View& v, const GizmoState& g) {
+// Arrows (translate) or square-tipped lines (scale) from the pivot along `axes`; the hovered one is
+// found before any is drawn, so only it lights up (they all meet at the pivot). `centre`: the scale
+// gizmo's uniform square, which wins near the pivot.
+int axisHandles(const View& v, const GizmoState& g, const glm::vec3 (&axes)[3], bool centre) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    std::optional<ImVec2> tips[3];
     int hovered = -1;
+    const bool nearPivot = std::abs(m.x - v.pivotPx.x) < 2.0f * kHitPx && std::abs(m.y - v.pivotPx.y) < 2.0f * kHitPx;
+    if (centre && v.canHover && nearPivot) hovered = 3;
     for (int i = 0; i < 3; ++i) {
-        const std::optional<ImVec2> b = v.px(v.pivot + unit(i) * v.len);
-        if (!b) continue;
-        if (v.canHover && segmentDistance(ImGui::GetIO().MousePos, v.pivotPx, *b) < kHitPx) hovered = i;
+        tips[i] = v.px(v.pivot + axes[i] * v.len);
+        if (tips[i] && hovered < 0 && v.canHover && segmentDistance(m, v.pivotPx, *tips[i]) < kHitPx) hovered = i;
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (!tips[i]) continue;
         const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
-        v.draw->AddLine(v.pivotPx, *b, hot ? kHot : kAxisColors[i], hot ? 4.0f : 2.5f);
-        v.draw->AddCircleFilled(*b, hot ? 6.0f : 4.5f, hot ? kHot : kAxisColors[i]);
+        const ImU32 col = hot ? kHot : kAxisColors[i];
+        const float r = hot ? 6.0f : 4.5f;
+        v.draw->AddLine(v.pivotPx, *tips[i], col, hot ? 4.0f : 2.5f);
+        if (centre) v.draw->AddRectFilled(ImVec2(tips[i]->x - r, tips[i]->y - r), ImVec2(tips[i]->x + r, tips[i]->y + r), col);
+        else v.draw->AddCircleFilled(*tips[i], r, col);
+    }
+    if (centre) {
+        const bool hot = g.axis == 3 || (g.axis < 0 && hovered == 3);
+        const float r = 7.0f;
+        v.draw->AddRect(ImVec2(v.pivotPx.x - r, v.pivotPx.y - r), ImVec2(v.pivotPx.x + r, v.pivotPx.y + r),
+                        hot ? kHot : kCentre, 0.0f, 0, 2.5f);
     }
     return hovered;
+}
+
+int translateHandles(const View& v, const GizmoState& g) {
+    const glm::vec3 axes[3] = {unit(0), unit(1), unit(2)};
+    return axisHandles(v, g, axes, false);
 }
 
 bool translate(Editor& e, GizmoState& g, const View& v, const std::string& path, double now) {
@@ -142,17 +165,19 @@ bool translate(Editor& e, GizmoState& g, const View& v, const std::string& path,
 
 int rotateHandles(const View& v, const GizmoState& g) {
     int hovered = -1;
+    std::vector<ImVec2> rings[3];
     for (int i = 0; i < 3; ++i) {
         const glm::vec3 u = unit((i + 1) % 3), w = unit((i + 2) % 3);
-        std::vector<ImVec2> pts;
         for (int k = 0; k <= kRingSegments; ++k) {
             const float t = 6.2831853f * static_cast<float>(k) / kRingSegments;
-            if (std::optional<ImVec2> p = v.px(v.pivot + (u * std::cos(t) + w * std::sin(t)) * v.len)) pts.push_back(*p);
+            if (std::optional<ImVec2> p = v.px(v.pivot + (u * std::cos(t) + w * std::sin(t)) * v.len)) rings[i].push_back(*p);
         }
-        for (size_t k = 1; k < pts.size() && v.canHover; ++k)
-            if (segmentDistance(ImGui::GetIO().MousePos, pts[k - 1], pts[k]) < kHitPx) hovered = i;
+        for (size_t k = 1; k < rings[i].size() && v.canHover && hovered < 0; ++k)
+            if (segmentDistance(ImGui::GetIO().MousePos, rings[i][k - 1], rings[i][k]) < kHitPx) hovered = i;
+    }
+    for (int i = 0; i < 3; ++i) {
         const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
-        v.draw->AddPolyline(pts.data(), static_cast<int>(pts.size()), hot ? kHot : kAxisColors[i], 0, hot ? 4.0f : 2.5f);
+        v.draw->AddPolyline(rings[i].data(), static_cast<int>(rings[i].size()), hot ? kHot : kAxisColors[i], 0, hot ? 4.0f : 2.5f);
     }
     return hovered;
 }
@@ -179,23 +204,8 @@ bool rotate(Editor& e, GizmoState& g, const View& v, const std::string& path, gl
 }
 
 int scaleHandles(const View& v, const GizmoState& g, glm::vec3 rotationDeg) {
-    int hovered = -1;
-    const ImVec2 m = ImGui::GetIO().MousePos;
-    for (int i = 0; i < 3; ++i) {
-        const std::optional<ImVec2> b = v.px(v.pivot + localAxis(rotationDeg, i) * v.len);
-        if (!b) continue;
-        if (v.canHover && segmentDistance(m, v.pivotPx, *b) < kHitPx) hovered = i;
-        const bool hot = g.axis == i || (g.axis < 0 && hovered == i);
-        const float r = hot ? 6.0f : 4.5f;
-        v.draw->AddLine(v.pivotPx, *b, hot ? kHot : kAxisColors[i], hot ? 4.0f : 2.5f);
-        v.draw->AddRectFilled(ImVec2(b->x - r, b->y - r), ImVec2(b->x + r, b->y + r), hot ? kHot : kAxisColors[i]);
-    }
-    // The centre handle wins over the axes' inner ends.
-    if (v.canHover && std::abs(m.x - v.pivotPx.x) < 2.0f * kHitPx && std::abs(m.y - v.pivotPx.y) < 2.0f * kHitPx) hovered = 3;
-    const bool hot = g.axis == 3 || (g.axis < 0 && hovered == 3);
-    const float r = 7.0f;
-    v.draw->AddRect(ImVec2(v.pivotPx.x - r, v.pivotPx.y - r), ImVec2(v.pivotPx.x + r, v.pivotPx.y + r), hot ? kHot : kCentre, 0.0f, 0, 2.5f);
-    return hovered;
+    const glm::vec3 axes[3] = {localAxis(rotationDeg, 0), localAxis(rotationDeg, 1), localAxis(rotationDeg, 2)};
+    return axisHandles(v, g, axes, true);
 }
 
 bool scale(Editor& e, GizmoState& g, const View& v, const std::string& path, glm::vec3 value, glm::vec3 rotationDeg,
@@ -239,11 +249,11 @@ bool transformGizmo(Editor& e, GizmoState& g, double now) {
         g.axis = -1;
         return false;
     }
-    if (g.mode == GizmoMode::Translate) return translate(e, g, *v, positionPath(scene, kind, sel.index), now);
+    if (e.gizmoMode == GizmoMode::Translate) return translate(e, g, *v, positionPath(scene, kind, sel.index), now);
     const std::string rotPath = rotationPath(scene, kind, sel.index);
     const std::optional<glm::vec3> rot = currentVec3(e, rotPath);
     if (!rot) return false;
-    if (g.mode == GizmoMode::Rotate) return rotate(e, g, *v, rotPath, *rot, sel.kind == Kind::Light, now);
+    if (e.gizmoMode == GizmoMode::Rotate) return rotate(e, g, *v, rotPath, *rot, sel.kind == Kind::Light, now);
     const std::string sPath = scalePath(scene, kind, sel.index);
     const std::optional<glm::vec3> s = currentVec3(e, sPath);
     return s && scale(e, g, *v, sPath, *s, *rot, now);

@@ -20,7 +20,6 @@ namespace brume::editor {
 class Editor;
 
 struct GizmoState {
-    GizmoMode mode = GizmoMode::Translate;
     int axis = -1;  // the handle being dragged (0 x, 1 y, 2 z, 3 the uniform scale centre), -1 none
     glm::vec3 start{0.0f};  // the edited value when the drag began
     float s0 = 0.0f;        // translate, scale: axis parameter at the press
@@ -29,7 +28,7 @@ struct GizmoState {
     std::string path;
 };
 
-// Draws the handles of the current mode and runs their drags; true while the gizmo owns the mouse
+// Draws the handles of the editor's mode (Editor::gizmoMode) and runs their drags; true while the gizmo owns the mouse
 // (a handle is being dragged, or hovered with no button down), so camera drags keep off it.
 bool transformGizmo(Editor& e, GizmoState& g, double now);
 

@@ -409,9 +409,9 @@ void handleViewportInput(Editor& e, UiState& ui, double now) {
         if (!ctrl && !io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H) && !target.empty()) runOrNotify(e, "hide " + target, now);
         if (!ctrl && io.KeyAlt && ImGui::IsKeyPressed(GLFW_KEY_H)) showAll(e, now);
         if (!ctrl && !ImGui::IsMouseDown(1) && ui.gizmo.axis < 0) {
-            if (ImGui::IsKeyPressed(GLFW_KEY_W)) ui.gizmo.mode = GizmoMode::Translate;
-            if (ImGui::IsKeyPressed(GLFW_KEY_E)) ui.gizmo.mode = GizmoMode::Rotate;
-            if (ImGui::IsKeyPressed(GLFW_KEY_R)) ui.gizmo.mode = GizmoMode::Scale;
+            if (ImGui::IsKeyPressed(GLFW_KEY_W)) runOrNotify(e, "gizmo translate", now);
+            if (ImGui::IsKeyPressed(GLFW_KEY_E)) runOrNotify(e, "gizmo rotate", now);
+            if (ImGui::IsKeyPressed(GLFW_KEY_R)) runOrNotify(e, "gizmo scale", now);
         }
     }
     if (!io.WantCaptureKeyboard) flyKeys(e, ui, now);
