@@ -163,6 +163,29 @@ TEST(EditorFiles, ImportVdbPlacesItInFrontOfTheCameraRelativeToTheScene) {
     EXPECT_TRUE(doc.scene().volumes[n].density && !doc.scene().volumes[n].density->empty());
     EXPECT_TRUE(files.takeMessages().empty());
 
+    // Save As into another folder keeps the relative path pointing at the same file.
+    const fs::path elsewhere = tempDir("import_saveas");
+    ASSERT_TRUE(run(files, doc, "save " + (elsewhere / "moved.json").string()).ok());
+    Result<OpenedScene> moved = openSceneFile((elsewhere / "moved.json").string());
+    ASSERT_TRUE(moved.ok()) << moved.error().message;
+    EXPECT_EQ(moved.value().scene.volumes[n].file, (dir / "vdb" / "cube.vdb").string());
+    EXPECT_TRUE(moved.value().warnings.empty());
+    ASSERT_TRUE(run(files, doc, "save " + (dir / "back.json").string()).ok());  // and back: relative again
+    EXPECT_EQ(loadSceneFile((dir / "back.json").string()).value().volumes[n].file, "vdb/cube.vdb");
+    fs::remove_all(elsewhere);
+
+    // Editing the file in the inspector reads the new one; a file that cannot be read refuses the edit.
+    writeCube(dir / "vdb" / "other.vdb");
+    const std::string file = "set volumes[" + std::to_string(n) + "].file ";
+    const DensityGridPtr grid = doc.scene().volumes[n].density;
+    ASSERT_TRUE(run(files, doc, file + "vdb/other.vdb").ok());
+    EXPECT_TRUE(doc.scene().volumes[n].density && doc.scene().volumes[n].density != grid);
+    const Scene beforeBadEdit = doc.scene();
+    Result<void> bad = run(files, doc, file + "vdb/none.vdb");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().message.find("none.vdb"), std::string::npos) << bad.error().message;
+    EXPECT_TRUE(doc.scene() == beforeBadEdit);
+
     // A file outside the scene's folder is kept absolute.
     const fs::path outside = tempDir("import_outside") / "far.vdb";
     writeCube(outside);

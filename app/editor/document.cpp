@@ -1,11 +1,14 @@
 #include "document.h"
 
 #include <charconv>
+#include <filesystem>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
+#include "files.h"
 #include "io/scene_json.h"
+#include "io/vdb_import.h"
 #include "view.h"
 
 namespace brume::editor {
@@ -87,10 +90,22 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
     // Hidden is editor state the JSON form does not carry; a set never changes the counts.
     Scene& n = s.value();
     for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) n.volumes[i].hidden = current.volumes[i].hidden;
-    // A loaded VDB grid is not in the JSON form either: it stays while its file and grid do.
-    for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i)
-        if (n.volumes[i].file == current.volumes[i].file && n.volumes[i].grid == current.volumes[i].grid)
-            n.volumes[i].density = current.volumes[i].density;
+    // A loaded VDB grid is not in the JSON form either: it stays while its file and grid do, and is
+    // read again when an edit changes them (a file that cannot be read refuses the edit).
+    for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) {
+        Volume& v = n.volumes[i];
+        const Volume& was = current.volumes[i];
+        if (v.file == was.file && v.grid == was.grid && v.type == was.type) {
+            v.density = was.density;
+        } else if (v.type == VolumeType::Vdb && !v.file.empty()) {
+            const std::filesystem::path p(v.file);
+            VdbImportOptions options;
+            options.grid = v.grid;
+            Result<VdbLoad> load = loadVdbDensity((p.is_absolute() ? p : std::filesystem::path(n.baseDir) / p).string(), options);
+            if (!load) return Error{"edit: volumes[" + std::to_string(i) + "].file: " + load.error().message};
+            v.density = load.value().grid;
+        }
+    }
     for (size_t i = 0; i < n.lights.size() && i < current.lights.size(); ++i) n.lights[i].hidden = current.lights[i].hidden;
     for (size_t i = 0; i < n.geometry.size() && i < current.geometry.size(); ++i) n.geometry[i].hidden = current.geometry[i].hidden;
     return s;
@@ -294,6 +309,13 @@ Result<void> Document::save(const std::vector<std::string>& a) {
     if (a.size() > 1) return usage("save", "[PATH]");
     const std::string target = a.empty() ? path_ : a[0];
     if (target.empty()) return Error{"This scene has no file yet: use Save As (save PATH)."};
+    // Relative VDB paths follow the scene into its new folder (they stay undoable edits).
+    std::error_code ec;
+    const std::string dir = std::filesystem::absolute(target, ec).lexically_normal().parent_path().string();
+    if (!ec && dir != scene_.baseDir) {
+        commit(rebasedTo(scene_, dir));
+        scene_.baseDir = dir;  // not part of Scene's ==: set even when no path changed
+    }
     Result<void> r = saveSceneFile(scene_, target);
     if (!r) return r;
     path_ = target;

@@ -151,6 +151,16 @@ Result<Volume> importVdbVolume(const Scene& scene, const std::string& sceneDir, 
     return v;
 }
 
+Scene rebasedTo(Scene scene, const std::string& dir) {
+    for (Volume& v : scene.volumes) {
+        if (v.type != VolumeType::Vdb || v.file.empty()) continue;
+        const fs::path p(v.file);
+        v.file = relativeIfInside((p.is_absolute() ? p : fs::path(scene.baseDir) / p).string(), dir);
+    }
+    scene.baseDir = dir;
+    return scene;
+}
+
 Result<std::vector<DirEntry>> listDirectory(const std::string& dir, const std::string& ext) {
     std::error_code ec;
     fs::directory_iterator it(dir, ec);

@@ -57,6 +57,10 @@ Result<OpenedScene> openSceneFile(const std::string& path);
 // VDB, no float grid, corrupt) name the file.
 Result<Volume> importVdbVolume(const Scene& scene, const std::string& sceneDir, const std::string& path);
 
+// `scene` as saved into folder `dir` (Save As to another folder): each vdb volume's `file` names
+// the same file as before, relative to `dir` when inside it, else absolute; baseDir = dir.
+Scene rebasedTo(Scene scene, const std::string& dir);
+
 struct DirEntry {
     std::string name;
     bool isDir = false;
