@@ -167,7 +167,11 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
     offerRecovery(editor, ui, o, seconds());
     double frameStart = seconds(), totalMs = 0.0;
     int frame = 0;
+    std::string shownTitle;
     while (true) {
+        // The title follows New / Open / Save As.
+        const std::string title = "brume-editor - " + (editor.doc().path().empty() ? std::string("untitled") : editor.doc().path());
+        if (title != shownTitle) glfwSetWindowTitle(presenter.window(), title.c_str()), shownTitle = title;
         glfwPollEvents();
         const double now = seconds();
         if (!droppedPaths.empty()) {
