@@ -22,10 +22,14 @@ float densityTextureFactor(VolumeData v, vec3 worldPos) {
     pnanovdb_readaccessor_t acc;
     pnanovdb_readaccessor_init(acc, pnanovdb_tree_get_root(buf, pnanovdb_grid_get_tree(buf, grid)));
     TextureCell c = textureCell(v, worldPos, frame.ambient.w);
-    ivec3 a = c.lo, b = c.hi;
-    vec4 lo = vec4(textureVoxel(buf, acc, a), textureVoxel(buf, acc, ivec3(b.x, a.y, a.z)),
-                   textureVoxel(buf, acc, ivec3(a.x, b.y, a.z)), textureVoxel(buf, acc, ivec3(b.x, b.y, a.z)));
-    vec4 hi = vec4(textureVoxel(buf, acc, ivec3(a.x, a.y, b.z)), textureVoxel(buf, acc, ivec3(b.x, a.y, b.z)),
-                   textureVoxel(buf, acc, ivec3(a.x, b.y, b.z)), textureVoxel(buf, acc, b));
+    // One fetch in a loop rather than 8 inlined ones: the walk's code is what costs on lavapipe.
+    vec4 lo, hi;
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 ijk = ivec3((corner & 1) != 0 ? c.hi.x : c.lo.x, (corner & 2) != 0 ? c.hi.y : c.lo.y,
+                          (corner & 4) != 0 ? c.hi.z : c.lo.z);
+        float value = textureVoxel(buf, acc, ijk);
+        if (corner < 4) lo[corner] = value;
+        else hi[corner - 4] = value;
+    }
     return textureDensityFactor(v, vdbTrilinear(lo, hi, c.frac));
 }
