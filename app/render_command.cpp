@@ -138,6 +138,10 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames));
     o.orbit = settings::cli_orbit.f();
     cmd->add_option("--orbit", o.orbit, optionHelp(settings::cli_orbit));
+    o.time = settings::cli_time.f();
+    cmd->add_option("--time", o.time, optionHelp(settings::cli_time));
+    o.fps = settings::cli_fps.f();
+    cmd->add_option("--fps", o.fps, optionHelp(settings::cli_fps));
     auto* ref = cmd->add_flag("--reference", o.reference,
                               "Use the per-pixel reference ray marcher (ground truth; slow). Default: off.");
     auto* cpu = cmd->add_flag("--cpu", o.cpu,
@@ -190,6 +194,8 @@ static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
     }
     if (auto e = checkRange("--frames", o.frames, settings::cli_frames)) return e;
     if (auto e = checkRange("--orbit", o.orbit, settings::cli_orbit)) return e;
+    if (auto e = checkRange("--time", o.time, settings::cli_time)) return e;
+    if (auto e = checkRange("--fps", o.fps, settings::cli_fps)) return e;
     if (auto e = checkRange("--exposure", o.exposure, settings::cli_exposure)) return e;
     if (auto e = checkRange("--vdb-memory-mb", o.vdbMemoryMb, settings::cli_vdb_memory)) return e;
     if (auto e = checkRange("--threads", o.threads, settings::cli_threads)) return e;
@@ -211,17 +217,28 @@ static RenderRequest requestFromOptions(const Scene& scene, const RenderOptions&
     return r;
 }
 
-// request.frames frames; with an orbit, one render call per frame (each with its camera, the history
-// carried over by the session's renderer), progress shown for the last only so it never goes back.
+static bool scrollsTextures(const Scene& scene) {
+    for (const Volume& v : scene.volumes)
+        if (v.density_texture && v.density_texture->scroll_mps != glm::vec3(0.0f)) return true;
+    return false;
+}
+
+// request.frames frames; with an orbit or a scrolling density texture, one render call per frame
+// (each with its camera and scene time, the history carried over by the session's renderer), progress
+// shown for the last only so it never goes back. Frame n of N is at time - (N - 1 - n) / fps: the
+// written frame is at --time whatever --frames is.
 static std::variant<RenderOutput, RenderFailure> renderFrames(RenderSession& session, const Scene& scene,
-                                                              const RenderRequest& request, float orbitDegPerFrame) {
-    if (orbitDegPerFrame == 0.0f) return session.render(scene, request);
+                                                              const RenderRequest& request, float orbitDegPerFrame,
+                                                              float fps) {
+    if (orbitDegPerFrame == 0.0f && (request.frames <= 1 || !scrollsTextures(scene)))
+        return session.render(scene, request);
     Scene s = scene;
     RenderRequest frame = request;
     frame.frames = 1;
     frame.progress = nullptr;
     for (int n = 0;; ++n) {
-        s.camera = orbitCamera(scene.camera, orbitDegPerFrame * static_cast<float>(n));
+        if (orbitDegPerFrame != 0.0f) s.camera = orbitCamera(scene.camera, orbitDegPerFrame * static_cast<float>(n));
+        s.time_s = scene.time_s - static_cast<float>(request.frames - 1 - n) / fps;
         frame.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
         if (n == request.frames - 1) {
             frame.progress = request.progress;
@@ -254,7 +271,8 @@ CommandResult runRender(const RenderOptions& o) {
     ProgressLine progress(std::string("rendering (") + rendererName(kind) + ")");
     request.progress = [&progress](float f) { progress.update(f); };
     RenderSession session(kind, o.device);
-    std::variant<RenderOutput, RenderFailure> result = renderFrames(session, scene.value(), request, o.orbit);
+    scene.value().time_s = o.time;
+    std::variant<RenderOutput, RenderFailure> result = renderFrames(session, scene.value(), request, o.orbit, o.fps);
     if (const RenderFailure* f = std::get_if<RenderFailure>(&result)) {
         progress.end();
         return f->userCanFix ? badInput(f->message) : internalFailure(f->message);

@@ -84,6 +84,8 @@ struct RenderOptions {
     std::string quality;
     int frames = 0;
     float orbit = 0.0f;  // --orbit DEGREES_PER_FRAME
+    float time = 0.0f;   // --time SECONDS: scene time of the written frame
+    float fps = 24.0f;   // --fps: frame rate of --frames (scene time between frames = 1 / fps)
     float exposure = 0.0f;
     int threads = 0;
     int vdbMemoryMb = 0;

@@ -56,6 +56,20 @@ static void compileVdb(const Volume& v, shd::VolumeData& d) {
                            glm::length(glm::vec3(worldFromIndex[2]))});
 }
 
+// Tile and scroll as written; the grid's active box and mean from the loaded grid. A texture that is
+// not loaded, empty, or has no positive mean is left out (factor 1).
+static void compileTexture(const Volume& v, shd::VolumeData& d) {
+    if (!v.density_texture) return;
+    const DensityTexture& t = *v.density_texture;
+    if (!t.density || t.density->empty() || !(t.mean > 0.0f) || !(t.tile_size_m > 0.0f)) return;
+    const glm::ivec3 lo = glm::ivec3(t.density->indexMin()) + 1;  // indexMin/Max are grown by one voxel
+    const glm::ivec3 hi = glm::ivec3(t.density->indexMax()) - 1;
+    d.textureParams = glm::vec4(1.0f / t.tile_size_m, t.strength, 1.0f / t.mean, 0.0f);
+    d.textureScroll = glm::vec4(t.scroll_mps, 0.0f);
+    d.textureMin = glm::ivec4(lo, 0);
+    d.textureSize = glm::ivec4(hi - lo + 1, 1);
+}
+
 shd::VolumeData compileVolume(const Volume& v) {
     shd::VolumeData d{};
     d.localFromWorld = glm::mat4(1.0f);
@@ -92,6 +106,7 @@ shd::VolumeData compileVolume(const Volume& v) {
             break;
         case VolumeType::Vdb: compileVdb(v, d); break;
     }
+    compileTexture(v, d);
     return d;
 }
 
@@ -116,6 +131,7 @@ CompiledScene compileScene(const Scene& scene) {
     CompiledScene cs;
     cs.ambient = scene.ambient;
     cs.cameraPosition = scene.camera.position;
+    cs.time = scene.time_s;
     size_t gridOffset = 0;
     for (const Volume& v : scene.volumes) {
         shd::VolumeData d = compileVolume(v);
@@ -127,15 +143,36 @@ CompiledScene compileScene(const Scene& scene) {
         cs.volumes.push_back(d);
         cs.grids.push_back(sampled ? v.density : nullptr);
     }
+    // Textures go after every density grid, in volume order (gpu/vdb_grids.cpp uploads them so).
+    for (size_t i = 0; i < scene.volumes.size(); ++i) {
+        const bool textured = shd::hasDensityTexture(cs.volumes[i]);
+        if (textured) {
+            cs.volumes[i].textureMin.w = static_cast<int>(gridOffset);
+            gridOffset += scene.volumes[i].density_texture->density->size();
+        }
+        cs.textures.push_back(textured ? scene.volumes[i].density_texture->density : nullptr);
+    }
     for (const Light& l : scene.lights) cs.lights.push_back(compileLight(l));
     return cs;
 }
 
-float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
+float plainVolumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
     const shd::VolumeData& v = cs.volumes[i];
     if (v.kind.x != shd::VOLUME_VDB) return shd::analyticDensity(v, p, cs.cameraPosition);
     if (!cs.grids[i]) return 0.0f;
     return v.params.x * cs.grids[i]->sampleIndex(shd::vdbIndexPos(v, p));
+}
+
+float densityTextureFactor(const CompiledScene& cs, size_t i, glm::vec3 p) {
+    if (i >= cs.textures.size() || !cs.textures[i]) return 1.0f;
+    const shd::VolumeData& v = cs.volumes[i];
+    const shd::TextureCell c = shd::textureCell(v, p, cs.time);
+    return shd::textureDensityFactor(v, cs.textures[i]->sampleCorners(c.lo, c.hi, c.frac));
+}
+
+float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
+    const float density = plainVolumeDensity(cs, i, p);
+    return density > 0.0f ? density * densityTextureFactor(cs, i, p) : density;
 }
 
 shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
@@ -185,7 +222,7 @@ shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs
     f.clipFromView = proj;
     f.clipFromWorld = proj * f.viewFromWorld;
     f.cameraPosition = glm::vec4(c.position, 0.0f);
-    f.ambient = glm::vec4(scene.ambient, 0.0f);
+    f.ambient = glm::vec4(scene.ambient, cs.time);
     f.projection = glm::vec4(tanY * aspect, tanY, c.near, c.far);
     f.froxelRange = glm::vec4(fs.near, fs.far, fs.distribution, 0.0f);
     const glm::ivec3 dims = froxelGridDims(width, height, fs);

@@ -15,17 +15,29 @@ struct CompiledScene {
     // Per volume: the density grid of a vdb volume (null otherwise). The GPU uploads them back to back
     // in this order; VolumeData.kind.y is each grid's byte offset there.
     std::vector<DensityGridPtr> grids;
+    // Per volume: its density texture's grid (null when none). The GPU uploads them after `grids`;
+    // VolumeData.textureMin.w is each one's byte offset there.
+    std::vector<DensityGridPtr> textures;
     std::vector<shd::LightData> lights;
     glm::vec3 ambient{0.0f};
     glm::vec3 cameraPosition{0.0f};
+    float time = 0.0f;  // scene time [s]: density textures scroll with it
 };
 
 shd::VolumeData compileVolume(const Volume& v);
 shd::LightData compileLight(const Light& l);
 CompiledScene compileScene(const Scene& scene);
 
-// Density of volume i at a world position, without bounds test: analytic or grid-sampled.
+// Density of volume i at a world position, without bounds test: analytic or grid-sampled, times its
+// density texture's factor.
 float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 worldPos);
+
+// The same without the density texture: what fog shadows see (the texture's mean factor is 1 for
+// strength <= 1; docs/vdb.md).
+float plainVolumeDensity(const CompiledScene& cs, size_t i, glm::vec3 worldPos);
+
+// Volume i's density texture factor at a world position at cs.time (1 when it has none).
+float densityTextureFactor(const CompiledScene& cs, size_t i, glm::vec3 worldPos);
 
 // Sum of every volume's media at a world position (vdb volumes sample their grid).
 shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 worldPos);

@@ -31,15 +31,28 @@ DensityGrid::DensityGrid(const void* bytes, size_t size)
 
 float DensityGrid::sampleIndex(glm::vec3 indexPos) const {
     if (empty_) return 0.0f;
+    const shd::VdbCell c = shd::vdbCell(indexPos);
+    return sampleCorners(c.base, c.base + glm::ivec3(1), c.frac);
+}
+
+float DensityGrid::sampleCorners(glm::ivec3 a, glm::ivec3 b, glm::vec3 frac) const {
+    if (empty_) return 0.0f;
     const auto* grid = reinterpret_cast<const nanovdb::NanoGrid<float>*>(storage_.data());
     auto acc = grid->getAccessor();
-    const shd::VdbCell c = shd::vdbCell(indexPos);
-    auto at = [&](int dx, int dy, int dz) {
-        return acc.getValue(nanovdb::Coord(c.base.x + dx, c.base.y + dy, c.base.z + dz));
-    };
-    const glm::vec4 lo(at(0, 0, 0), at(1, 0, 0), at(0, 1, 0), at(1, 1, 0));
-    const glm::vec4 hi(at(0, 0, 1), at(1, 0, 1), at(0, 1, 1), at(1, 1, 1));
-    return shd::vdbTrilinear(lo, hi, c.frac);
+    auto at = [&](int x, int y, int z) { return acc.getValue(nanovdb::Coord(x, y, z)); };
+    const glm::vec4 lo(at(a.x, a.y, a.z), at(b.x, a.y, a.z), at(a.x, b.y, a.z), at(b.x, b.y, a.z));
+    const glm::vec4 hi(at(a.x, a.y, b.z), at(b.x, a.y, b.z), at(a.x, b.y, b.z), at(b.x, b.y, b.z));
+    return shd::vdbTrilinear(lo, hi, frac);
+}
+
+double DensityGrid::activeBoxMean() const {
+    if (empty_) return 0.0;
+    const auto* grid = reinterpret_cast<const nanovdb::NanoGrid<float>*>(storage_.data());
+    auto acc = grid->getAccessor();
+    const nanovdb::CoordBBox box = grid->indexBBox();
+    double sum = 0.0;
+    for (auto it = box.begin(); it; ++it) sum += static_cast<double>(acc.getValue(*it));
+    return sum / static_cast<double>(box.volume());
 }
 
 }  // namespace brume

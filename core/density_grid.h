@@ -31,6 +31,13 @@ public:
     // Trilinear value at an index-space position (0 outside the active voxels, the background).
     float sampleIndex(glm::vec3 indexPos) const;
 
+    // Trilinear value of the cell whose 8 corners are (lo or hi).xyz per axis: lo and hi need not be
+    // neighbours (a density texture wraps hi around to the start of its box at the seam).
+    float sampleCorners(glm::ivec3 lo, glm::ivec3 hi, glm::vec3 frac) const;
+    // Mean value over the active voxels' index box (inactive voxels count as the background, 0);
+    // 0 when empty. Costs one lookup per voxel of the box: for density textures, at load.
+    double activeBoxMean() const;
+
     bool empty() const { return empty_; }
     // Active voxels' index bounding box, grown by one voxel (trilinear support); empty() when none.
     glm::vec3 indexMin() const { return indexMin_; }

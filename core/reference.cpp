@@ -125,7 +125,8 @@ double vdbDensityIntegral(const CompiledScene& cs, size_t i, glm::dvec3 o, glm::
     if (in.empty() || !(in.t1 > in.t0)) return 0.0;
     const double step = 0.25 * static_cast<double>(v.params.y);
     const int n = static_cast<int>(std::clamp(std::ceil((in.t1 - in.t0) / step), 1.0, 65536.0));
-    auto density = [&](glm::vec3 p) { return static_cast<double>(volumeDensity(cs, i, p)); };
+    // Fog shadows see no density texture in any renderer (docs/vdb.md): the plain grid here too.
+    auto density = [&](glm::vec3 p) { return static_cast<double>(plainVolumeDensity(cs, i, p)); };
     return marchDensity(density, o, d, in.t0, in.t1, n);
 }
 
@@ -381,8 +382,16 @@ private:
         for (const shd::VolumeData& v : cs_.volumes) {
             if (!shd::insideBounds(v, p)) continue;
             h = std::min(h, static_cast<double>(params_.density_step) * densityScale(v, ray, p));
+            // A density texture's trilinear field changes over one of its voxels, like a grid's.
+            if (shd::hasDensityTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v));
         }
         return h;
+    }
+
+    // World edge of a density texture voxel: a tile holds textureSize voxels per axis.
+    static double textureVoxel(const shd::VolumeData& v) {
+        const glm::ivec3 n(v.textureSize);
+        return 1.0 / (static_cast<double>(v.textureParams.x) * static_cast<double>(std::max({n.x, n.y, n.z})));
     }
 
     // Ray length over which a volume's density changes by about a factor e (or its fade width).

@@ -97,6 +97,22 @@ struct Medium {
     bool operator==(const Medium&) const = default;
 };
 
+// A noise grid tiled through world space and scrolled over time that modulates a volume's density
+// (any volume type; docs/vdb.md, "Density textures"). Sampled in world space, so adjacent volumes
+// with the same texture meet without a seam.
+struct DensityTexture {
+    std::string file;  // as written in the scene
+    std::string grid = "density";
+    float tile_size_m = settings::texture_tile_size.f();
+    glm::vec3 scroll_mps = vec3Default(settings::texture_scroll);
+    float strength = settings::texture_strength.f();
+    // Loaded by io/vdb_import.h (loadSceneGrids), not serialized: the grid and its mean over the
+    // active box (DensityGrid::activeBoxMean). Null until loaded: an unloaded texture modulates nothing.
+    DensityGridPtr density;
+    float mean = 0.0f;
+    bool operator==(const DensityTexture&) const = default;
+};
+
 enum class VolumeType { Box, Height, Depth, Vdb };
 enum class HeightProfile { Exponential, Linear };
 
@@ -118,6 +134,7 @@ struct Volume {
     // vdb: the grid read from `file` by io/vdb_import.h (loadSceneGrids); not serialized. Null until
     // loaded: an unloaded vdb volume is empty.
     DensityGridPtr density;
+    std::optional<DensityTexture> density_texture;             // any type
     Medium medium;
     // Editor view state (brume-editor's hide): not in the scene format, never saved; the renderers
     // ignore it, the editor renders a copy without hidden objects (app/editor/view.h).
@@ -154,6 +171,9 @@ struct Scene {
     std::vector<Geometry> geometry;
     // Folder of the scene file, for resolving relative paths (vdb files); not serialized.
     std::string baseDir;
+    // Scene time [s] (density textures scroll with it): a render input (brume render --time), not
+    // serialized and not compared.
+    float time_s = 0.0f;
     bool operator==(const Scene& o) const {
         return version == o.version && camera == o.camera && render == o.render && froxels == o.froxels &&
                temporal == o.temporal && ambient == o.ambient && lights == o.lights && volumes == o.volumes &&

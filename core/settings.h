@@ -83,6 +83,11 @@ inline constexpr Setting volume_file      {"volumes[type=vdb].file", K::String, 
 inline constexpr Setting volume_grid      {"volumes[type=vdb].grid", K::String, "", 0, 0, {0}, "", "Grid name in the file (default: density)."};
 inline constexpr Setting volume_density_scale {"volumes[type=vdb].density_scale", K::Number, "", 0, kBig, {1}, "", "Multiplies the grid's values."};
 
+inline constexpr Setting texture_file     {"volumes[].density_texture.file", K::String, "", 0, 0, {0}, "", "OpenVDB file of a noise grid tiled through world space that modulates the volume's density, relative to the scene file's folder. Required in density_texture (docs/vdb.md)."};
+inline constexpr Setting texture_grid     {"volumes[].density_texture.grid", K::String, "", 0, 0, {0}, "", "Grid name in the texture file (default: density; the same choice rules as a vdb volume's grid)."};
+inline constexpr Setting texture_tile_size {"volumes[].density_texture.tile_size_m", K::Number, "m", 1e-3, kBig, {10}, "", "Edge of the cube in world space that one copy of the grid's active box fills; the grid repeats every tile_size_m along X, Y and Z."};
+inline constexpr Setting texture_scroll   {"volumes[].density_texture.scroll_mps", K::Vec3, "m/s", -kBig, kBig, {0, 0, 0}, "", "Wind: the texture moves by scroll_mps x time (brume render --time, --fps)."};
+inline constexpr Setting texture_strength {"volumes[].density_texture.strength", K::Number, "", 0, 100, {1}, "", "density x max(0, 1 + strength (texture / mean - 1)), mean = the grid's mean over its active box: 0 = the plain volume, 1 = density x texture / mean (same mean density), > 1 = more contrast."};
 inline constexpr Setting transform_translation {"*.transform.translation", K::Vec3, "m", -kBig, kBig, {0, 0, 0}, "", "Translation."};
 inline constexpr Setting transform_rotation {"*.transform.rotation_deg", K::Vec3, "deg", -36000, 36000, {0, 0, 0}, "", "Rotation about world X, then Y, then Z."};
 inline constexpr Setting transform_scale  {"*.transform.scale", K::Vec3, "", 1e-4, kBig, {1, 1, 1}, "", "Scale along the local axes (box volumes and geometry: the unit cube's edge lengths)."};
@@ -111,7 +116,8 @@ inline constexpr std::array kAll = {
     &light_shadows_local, &light_fog_scale, &light_inner_deg, &light_outer_deg,
     &volume_type, &volume_name, &volume_edge_fade, &volume_base_height, &volume_profile, &volume_falloff,
     &volume_transition_height, &volume_visibility_distance, &volume_start_distance, &volume_file,
-    &volume_grid, &volume_density_scale, &transform_translation, &transform_rotation, &transform_scale,
+    &volume_grid, &volume_density_scale, &texture_file, &texture_grid, &texture_tile_size, &texture_scroll,
+    &texture_strength, &transform_translation, &transform_rotation, &transform_scale,
     &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
     &geometry_type, &geometry_name, &geometry_height, &geometry_center, &geometry_radius, &geometry_albedo,
     &geometry_emission,
@@ -122,6 +128,8 @@ inline constexpr std::array kAll = {
 inline constexpr Setting cli_exposure     {"--exposure", K::Number, "", 1e-6, 1e6, {1}, "", "Multiplies radiance before the PNG tone curve; EXR is written linear and unscaled."};
 inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames rendered with temporal accumulation; the last is written (froxel renderers; the reference ignores it)."};
 inline constexpr Setting cli_orbit        {"--orbit", K::Number, "deg", -180, 180, {0}, "", "Camera path for --frames: frame n turns the camera by n times this about its target (axis: camera.up); 0 = static."};
+inline constexpr Setting cli_time         {"--time", K::Number, "s", -kBig, kBig, {0}, "", "Scene time of the image written: density textures have scrolled by scroll_mps x time."};
+inline constexpr Setting cli_fps          {"--fps", K::Number, "1/s", 1e-3, 1000, {24}, "", "Frame rate of --frames: frame n of N is at time - (N - 1 - n) / fps, so the last (written) frame is at --time."};
 // brume-editor options.
 inline constexpr Setting editor_autosave_seconds {"--autosave-seconds", K::Number, "s", 0.1, 3600, {5}, "", "Longest time unsaved changes wait before the editor writes them to its recovery file."};
 inline constexpr Setting cli_vdb_memory   {"--vdb-memory-mb", K::Integer, "MiB", 1, 1048576, {4096}, "", "Largest OpenVDB grid accepted, in memory and as NanoVDB (GPU); bigger grids are refused."};

@@ -161,6 +161,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
                            "shadow transmittance", dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
+    BRUME_TRY(chooseVoxelizeVariant(cs));
     const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(clusterCount(dims));
     BRUME_TRY(ensureBuffer(res.lightClusters, clusterInts * sizeof(int), storage, Memory::Upload, "light clusters",
                            dirty));
@@ -209,7 +210,7 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     timer.end(cmd);
 
     timer.begin(cmd, "voxelize");
-    recordVoxelize(cmd, res.vdbGridsUploaded.empty() ? voxelize : voxelizeVdb, bindings, res.froxelDims);
+    recordVoxelize(cmd, voxelizeVariant(), bindings, res.froxelDims);
     timer.end(cmd);
     timer.begin(cmd, "light");
     computeToComputeBarrier(cmd);

@@ -11,6 +11,11 @@ Result<ComputePass> createVoxelizeVdbPass(const Device& device, VkPipelineLayout
     return createComputePass(device, layout, "voxelize_vdb.comp", "voxelize (vdb)");
 }
 
+Result<ComputePass> createVoxelizeTexturePass(const Device& device, VkPipelineLayout layout, bool vdb) {
+    return vdb ? createComputePass(device, layout, "voxelize_vdb_texture.comp", "voxelize (vdb, texture)")
+               : createComputePass(device, layout, "voxelize_texture.comp", "voxelize (texture)");
+}
+
 // One invocation per froxel.
 void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims) {
     bindComputePass(cmd, pass, b);

@@ -31,6 +31,8 @@ private:
 Result<ComputePass> createVoxelizePass(const Device& device, VkPipelineLayout layout);
 // The variant that samples vdb grids; costs ~9x more on lavapipe, so only for scenes that have them.
 Result<ComputePass> createVoxelizeVdbPass(const Device& device, VkPipelineLayout layout);
+// The variants that also apply density textures (created on first use, for the same reason).
+Result<ComputePass> createVoxelizeTexturePass(const Device& device, VkPipelineLayout layout, bool vdb);
 void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
 // Shadow volume. in: frame, volumes, lights. out: shadowTransmittance (each shadowing light's fog

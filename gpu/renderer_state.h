@@ -30,6 +30,10 @@ struct GpuRenderer::State {
     GeometryPass geometry;
     ComputePass voxelize, voxelizeVdb, shadowVolume, light, integrate, composite;
     ComputePass temporal;
+    // Density texture variants of voxelize, created when a scene first needs them (vdb_grids.cpp);
+    // index: the scene has vdb volumes (0/1).
+    std::array<ComputePass, 2> voxelizeTexture;
+    bool frameHasVdbVolumes = false, frameHasTextures = false;  // this frame's voxelize variant
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
@@ -44,6 +48,8 @@ struct GpuRenderer::State {
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
+    Result<void> chooseVoxelizeVariant(const CompiledScene& cs);
+    const ComputePass& voxelizeVariant() const;
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction, size_t sunShadowBytes);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,

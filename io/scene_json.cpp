@@ -407,16 +407,19 @@ std::optional<Light> readLight(Ctx& c, const json& v, const std::string& path) {
 bool checkVolumeKeys(Ctx& c, const json& v, const std::string& path, VolumeType type) {
     switch (type) {
         case VolumeType::Box:
-            return checkObject(c, v, path, {"type", "name", "transform", "edge_fade", "medium"}, "a box volume");
+            return checkObject(c, v, path, {"type", "name", "transform", "edge_fade", "density_texture", "medium"},
+                               "a box volume");
         case VolumeType::Height:
             return checkObject(c, v, path,
-                               {"type", "name", "base_height", "profile", "falloff", "transition_height", "medium"},
+                               {"type", "name", "base_height", "profile", "falloff", "transition_height",
+                                "density_texture", "medium"},
                                "a height volume");
         case VolumeType::Depth:
-            return checkObject(c, v, path, {"type", "name", "visibility_distance", "start_distance", "medium"},
+            return checkObject(c, v, path, {"type", "name", "visibility_distance", "start_distance", "density_texture", "medium"},
                                "a depth volume");
         case VolumeType::Vdb:
-            return checkObject(c, v, path, {"type", "name", "file", "grid", "transform", "density_scale", "medium"},
+            return checkObject(c, v, path, {"type", "name", "file", "grid", "transform", "density_scale", "density_texture",
+                                "medium"},
                                "a vdb volume");
     }
     return false;
@@ -433,6 +436,24 @@ void readVdbFile(Ctx& c, const json& v, const std::string& path, Volume& vol) {
     if (!c.failed() && vol.grid.empty()) c.fail(child(path, "grid"), "must not be empty");
 }
 
+void readDensityTexture(Ctx& c, const json& v, const std::string& volumePath, Volume& vol) {
+    const json* t = findKey(v, "density_texture");
+    if (!t) return;
+    const std::string path = child(volumePath, "density_texture");
+    if (!checkObject(c, *t, path, {"file", "grid", "tile_size_m", "scroll_mps", "strength"}, "density_texture"))
+        return;
+    DensityTexture tex;
+    if (!findKey(*t, "file")) c.fail(child(path, "file"), "missing required key (the OpenVDB file of the texture)");
+    readString(c, *t, path, st::texture_file, tex.file);
+    if (!c.failed() && tex.file.empty()) c.fail(child(path, "file"), "must not be empty");
+    readString(c, *t, path, st::texture_grid, tex.grid);
+    if (!c.failed() && tex.grid.empty()) c.fail(child(path, "grid"), "must not be empty");
+    readFloat(c, *t, path, st::texture_tile_size, tex.tile_size_m);
+    readVec3(c, *t, path, st::texture_scroll, tex.scroll_mps);
+    readFloat(c, *t, path, st::texture_strength, tex.strength);
+    if (!c.failed()) vol.density_texture = tex;
+}
+
 std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path) {
     const std::optional<VolumeType> type = readType<VolumeType, 4>(c, v, path, st::volume_type);
     if (!type || !checkVolumeKeys(c, v, path, *type)) return std::nullopt;
@@ -440,6 +461,7 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
     vol.type = *type;
     readString(c, v, path, st::volume_name, vol.name);
     readMedium(c, v, path, vol.medium);
+    readDensityTexture(c, v, path, vol);
     switch (*type) {
         case VolumeType::Box:
             readTransform(c, v, path, vol.transform);
@@ -731,6 +753,16 @@ ojson volumeJson(const Volume& v) {
             j["transform"] = transformJson(v.transform);
             j["density_scale"] = num(v.density_scale);
             break;
+    }
+    if (v.density_texture) {
+        const DensityTexture& t = *v.density_texture;
+        ojson tj;
+        tj["file"] = t.file;
+        tj["grid"] = t.grid;
+        tj["tile_size_m"] = num(t.tile_size_m);
+        tj["scroll_mps"] = vec(t.scroll_mps);
+        tj["strength"] = num(t.strength);
+        j["density_texture"] = tj;
     }
     j["medium"] = mediumJson(v.medium);
     return j;

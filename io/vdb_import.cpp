@@ -267,10 +267,40 @@ Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path) {
     return out;
 }
 
+namespace {
+
+// The texture of volume i: its grid and the mean its strength is measured against.
+Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std::string& sceneFile, size_t i,
+                                uint64_t memoryLimitBytes, std::vector<std::string>& warnings) {
+    const std::string where = sceneFile + ": volumes[" + std::to_string(i) + "].density_texture.";
+    fs::path p(t.file);
+    if (p.is_relative()) p = fs::path(scene.baseDir) / p;
+    VdbImportOptions options;
+    options.grid = t.grid;
+    options.memoryLimitBytes = memoryLimitBytes;
+    auto load = loadVdbDensity(p.lexically_normal().string(), options);
+    if (!load) return Error{where + "file: " + load.error().message};
+    for (std::string& w : load.value().warnings) warnings.push_back(std::move(w));
+    const double mean = load.value().grid->activeBoxMean();
+    if (!(mean > 0.0))
+        return Error{where + "grid: grid '" + load.value().gridName + "' of " + p.lexically_normal().string() +
+                     " has no positive values, so it cannot modulate a density (a texture is measured against its "
+                     "mean)."};
+    t.density = load.value().grid;
+    t.mean = static_cast<float>(mean);
+    return {};
+}
+
+}  // namespace
+
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,
                             std::vector<std::string>& warnings) {
     for (size_t i = 0; i < scene.volumes.size(); ++i) {
         Volume& v = scene.volumes[i];
+        if (v.density_texture) {
+            Result<void> t = loadDensityTexture(*v.density_texture, scene, sceneFile, i, memoryLimitBytes, warnings);
+            if (!t) return t;
+        }
         if (v.type != VolumeType::Vdb) continue;
         fs::path p(v.file);
         if (p.is_relative()) p = fs::path(scene.baseDir) / p;

@@ -1,7 +1,7 @@
-// Pass 1 (body of voxelize.comp and voxelize_vdb.comp): media of every volume at each froxel's
-// sample point (core: voxelizeRow). Two variants because the inlined PNanoVDB walk makes the whole
-// shader ~9x slower on lavapipe (1031 vs 115 ms at 1280x720 high) even when no volume takes that
-// branch: scenes without vdb volumes run the variant that has no such branch.
+// Pass 1 (body of voxelize.comp, voxelize_vdb.comp and their _texture variants): media of every
+// volume at each froxel's sample point (core: voxelizeRow). Variants because the inlined PNanoVDB walk
+// makes the whole shader ~9x slower on lavapipe (1031 vs 115 ms at 1280x720 high) even when no volume
+// takes that branch: scenes without vdb volumes (density textures) run a variant without that branch.
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
 MediaSample mediaAt(vec3 p) {
@@ -13,6 +13,9 @@ MediaSample mediaAt(vec3 p) {
                                                         : analyticDensity(volumes[i], p, frame.cameraPosition.xyz);
 #else
         float density = analyticDensity(volumes[i], p, frame.cameraPosition.xyz);
+#endif
+#ifdef BRUME_VOXELIZE_TEXTURE
+        if (density > 0.0f) density *= densityTextureFactor(volumes[i], p);
 #endif
         m = addMedium(m, volumes[i], density);
     }

@@ -392,7 +392,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 1, "fog": {}})",
      "scene.json: fog: unknown key; allowed in a scene: brume_scene, camera, render, froxels, temporal, ambient, lights, volumes, geometry"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "falloff": 1}]})",
-     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, medium"},
+     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, density_texture, medium"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "medium": {"albedo": 1}}]})",
      "scene.json: volumes[0].medium.albedo: unknown key; allowed in a medium: scattering, absorption, emission, phase_g"},
     {R"({"brume_scene": 1, "camera": {"fov_y_deg": "wide"}})", "scene.json: camera.fov_y_deg: expected a number, got \"wide\""},

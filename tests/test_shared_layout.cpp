@@ -145,6 +145,10 @@ void expectVolumeData(const std::string& p) {
     EXPECT_MEMBER(p, VolumeData, kind);
     EXPECT_MEMBER(p, VolumeData, worldMin);
     EXPECT_MEMBER(p, VolumeData, worldMax);
+    EXPECT_MEMBER(p, VolumeData, textureParams);
+    EXPECT_MEMBER(p, VolumeData, textureScroll);
+    EXPECT_MEMBER(p, VolumeData, textureMin);
+    EXPECT_MEMBER(p, VolumeData, textureSize);
 }
 
 void expectLightData(const std::string& p) {
@@ -201,7 +205,7 @@ TEST(SharedLayout, SunShadowFitStd430MatchesCpp) {
 
 // The sizes the header comments promise (and that the GPU buffers are sized with).
 TEST(SharedLayout, SizesAreTheDocumentedOnes) {
-    EXPECT_EQ(sizeof(shd::VolumeData), 176u);
+    EXPECT_EQ(sizeof(shd::VolumeData), 240u);
     EXPECT_EQ(sizeof(shd::LightData), 80u);
     EXPECT_EQ(sizeof(shd::FrameUniforms), 384u);
 }

@@ -6,6 +6,7 @@
 #include "froxel.h"
 #include "media.h"
 #include "vdb.h"
+#include "density_texture.h"
 #include "lighting.h"
 #include "integrate.h"
 #include "temporal.h"

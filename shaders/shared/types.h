@@ -31,7 +31,7 @@ BRUME_CONST int INTEGRATE_GROUP_Y = 8;
 BRUME_CONST int SCREEN_GROUP_X = 8;
 BRUME_CONST int SCREEN_GROUP_Y = 8;
 
-// One fog volume, ready to evaluate. 176 bytes.
+// One fog volume, ready to evaluate. 240 bytes.
 struct VolumeData {
     mat4 localFromWorld;  // box: world -> unit cube [-0.5,0.5]^3; vdb: world -> grid index space
     vec4 sigmaS_g;        // rgb: scattering coefficient at density 1 [1/m]; a: phase g
@@ -42,6 +42,11 @@ struct VolumeData {
     ivec4 kind;           // x: VOLUME_*; vdb: y byte offset of its grid in the GPU grid buffer, z 1 = has a grid
     vec4 worldMin;        // xyz: world-space bounds of non-zero density (+-BRUME_HUGE when unbounded)
     vec4 worldMax;
+    // Density texture (density_texture.h), all zero when the volume has none.
+    vec4 textureParams;   // x: 1 / tile_size [1/m]; y: strength; z: 1 / the grid's mean; w unused
+    vec4 textureScroll;   // xyz: scroll velocity [m/s]; w unused
+    ivec4 textureMin;     // xyz: the grid's active index box minimum; w: byte offset in the GPU grid buffer
+    ivec4 textureSize;    // xyz: active index box size in voxels (the period); w: 1 = has a texture
 };
 
 // One light, ready to evaluate. 80 bytes.
@@ -61,7 +66,7 @@ struct FrameUniforms {
     mat4 clipFromView;
     mat4 clipFromWorld;
     vec4 cameraPosition;  // xyz: world position; w unused
-    vec4 ambient;         // rgb: radiance arriving from every direction; w unused
+    vec4 ambient;         // rgb: radiance arriving from every direction; w: scene time [s] (density textures)
     vec4 projection;      // x: tan(fov_y/2) * aspect; y: tan(fov_y/2); z: camera near; w: camera far
     vec4 froxelRange;     // x: froxel near [m]; y: froxel far [m]; z: slice distribution exponent
     ivec4 froxelDims;     // xyz: froxel grid size; w: tile size [px]

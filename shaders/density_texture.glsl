@@ -1,0 +1,35 @@
+// Density textures on the GPU (core: densityTextureFactor): the 8 voxels of shared/density_texture.h's
+// textureCell, read with PNanoVDB from the same bytes the CPU samples (the texture grids follow the
+// vdb volumes' grids in BINDING_VDB_GRIDS; VolumeData.textureMin.w is a texture's byte offset), mixed
+// by vdbTrilinear. Include after vdb_sample.glsl when both are used: that file declares the buffer.
+#ifndef BRUME_VOXELIZE_VDB
+layout(std430, set = 0, binding = BINDING_VDB_GRIDS) readonly buffer VdbGridBlock { uint vdbGridWords[]; };
+#define PNANOVDB_GLSL
+#define pnanovdb_buf_data vdbGridWords
+#include "nanovdb/PNanoVDB.h"
+#endif
+
+float textureVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
+    return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
+}
+
+// Factor on volume v's density at a world position at the frame's scene time (1 without a texture).
+float densityTextureFactor(VolumeData v, vec3 worldPos) {
+    if (!hasDensityTexture(v)) return 1.0f;
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // GLSL's PNanoVDB reads the global vdbGridWords
+    pnanovdb_grid_handle_t grid;
+    grid.address.byte_offset = uint(v.textureMin.w);
+    pnanovdb_readaccessor_t acc;
+    pnanovdb_readaccessor_init(acc, pnanovdb_tree_get_root(buf, pnanovdb_grid_get_tree(buf, grid)));
+    TextureCell c = textureCell(v, worldPos, frame.ambient.w);
+    // One fetch in a loop rather than 8 inlined ones: the walk's code is what costs on lavapipe.
+    vec4 lo, hi;
+    for (int corner = 0; corner < 8; ++corner) {
+        ivec3 ijk = ivec3((corner & 1) != 0 ? c.hi.x : c.lo.x, (corner & 2) != 0 ? c.hi.y : c.lo.y,
+                          (corner & 4) != 0 ? c.hi.z : c.lo.z);
+        float value = textureVoxel(buf, acc, ijk);
+        if (corner < 4) lo[corner] = value;
+        else hi[corner - 4] = value;
+    }
+    return textureDensityFactor(v, vdbTrilinear(lo, hi, c.frac));
+}

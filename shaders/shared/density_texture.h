@@ -1,0 +1,52 @@
+// Density textures: a grid's active index box tiled through world space (period tile_size along X, Y
+// and Z), scrolled by the wind, trilinear with wrapping at the seam, modulating a volume's density.
+// Evaluated identically by the CPU (DensityGrid::sampleCorners) and the GPU (density_texture.glsl):
+// each fetches the 8 voxels of textureCell(...) its own way and mixes them with vdbTrilinear.
+#ifndef BRUME_SHARED_DENSITY_TEXTURE_H
+#define BRUME_SHARED_DENSITY_TEXTURE_H
+
+#include "types.h"
+#include "vdb.h"
+
+BRUME_NAMESPACE_BEGIN
+
+struct TextureCell {
+    ivec3 lo;    // index of the lower corner voxel, inside the active box
+    ivec3 hi;    // the upper corner voxel: lo + 1, or the box's first voxel at the seam
+    vec3 frac;   // position inside the cell, in [0, 1)
+};
+
+// i in [0, n]: n wraps to 0 (u = fract(q) * n reaches n when fract rounds up to 1).
+BRUME_FUNC int textureWrap(int i, int n) { return i >= n ? i - n : i; }
+
+// World position p at scene time t -> the texture cell. Tile coordinate q = (p - scroll t) / tile;
+// one tile holds the box's n voxels per axis, so the field has period n voxels (voxel n is voxel 0).
+BRUME_FUNC TextureCell textureCell(VolumeData v, vec3 worldPos, float time) {
+    vec3 q = (worldPos - vec3(v.textureScroll) * time) * v.textureParams.x;
+    ivec3 n = ivec3(v.textureSize);
+    vec3 u = (q - floor(q)) * vec3(n);
+    vec3 f = floor(u);
+    ivec3 b = ivec3(f);
+    TextureCell c;
+    c.frac = u - f;
+    ivec3 lo = ivec3(textureWrap(b.x, n.x), textureWrap(b.y, n.y), textureWrap(b.z, n.z));
+    ivec3 hi = ivec3(textureWrap(lo.x + 1, n.x), textureWrap(lo.y + 1, n.y), textureWrap(lo.z + 1, n.z));
+    ivec3 origin = ivec3(v.textureMin);
+    c.lo = origin + lo;
+    c.hi = origin + hi;
+    return c;
+}
+
+// The factor on the volume's density for a texture value: 1 + strength (value / mean - 1), held at
+// >= 0. Strength 0 gives exactly 1 (the plain volume); strength <= 1 keeps the mean density (the
+// factor's mean over a tile is exactly 1, since trilinear interpolation of a periodic field keeps its
+// voxels' mean), which is what fog shadows use (docs/vdb.md).
+BRUME_FUNC float textureDensityFactor(VolumeData v, float value) {
+    return max(1.0f + v.textureParams.y * (value * v.textureParams.z - 1.0f), 0.0f);
+}
+
+BRUME_FUNC bool hasDensityTexture(VolumeData v) { return v.textureSize.w != 0; }
+
+BRUME_NAMESPACE_END
+
+#endif
