@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/settings.h"
+#include "debug_panel.h"
 #include "gizmo.h"
 #include "view.h"
 #include "io/scene_json.h"
@@ -226,7 +227,7 @@ void outliner(Editor& e, double now) {
 void stats(Editor& e, UiState& ui, double now) {
     if (!ui.showStats) return;
     ImGui::SetNextWindowPos(ImVec2(10, 340), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(260, 250), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(260, 370), ImGuiCond_FirstUseEver);  // room for the Debug section
     ImGui::Begin("Stats", &ui.showStats);
     const char* names[] = {"low", "medium", "high", "ultra"};
     int q = static_cast<int>(e.quality());
@@ -242,6 +243,7 @@ void stats(Editor& e, UiState& ui, double now) {
         ImGui::Text("lit %zu  skipped %zu", r->litFroxels, r->skippedFroxels);
         for (const gpu::PassTiming& p : r->passes) ImGui::Text("  %-10s %7.2f ms", p.name.c_str(), p.gpuMs);
     }
+    debugSection(e, now);
     ImGui::End();
 }
 
@@ -366,6 +368,7 @@ void drawUi(Editor& e, UiState& ui, double now) {
     outliner(e, now);
     inspector(e, now);
     stats(e, ui, now);
+    froxelGridOverlay(e);
     help(ui);
     notifications(e, now);
     prompts(e, ui, now);
