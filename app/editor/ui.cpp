@@ -435,7 +435,10 @@ void handleViewportInput(Editor& e, UiState& ui, double now) {
         runOrNotify(e, "pick " + fmt(io.MousePos.x / w.x) + " " + fmt(io.MousePos.y / w.y), now);
     const ImVec2 d = io.MouseDelta;
     const float h = std::max(1.0f, io.DisplaySize.y);
-    const bool moved = d.x != 0.0f || d.y != 0.0f;
+    // The press frame's delta is the pointer's travel before the press, not a drag (found by
+    // tests/test_editor_input.cpp: a click after a jump orbited the camera).
+    const bool pressed = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2);
+    const bool moved = (d.x != 0.0f || d.y != 0.0f) && !pressed;
     if (moved && ImGui::IsMouseDown(0) && !io.KeyShift)
         runOrNotify(e, "orbit " + fmt(-d.x * 0.3) + " " + fmt(d.y * 0.3), now);
     else if (moved && ImGui::IsMouseDown(1))
