@@ -22,7 +22,8 @@ namespace {
 Result<void> debugAction(editor::DebugViewState& s, const std::string& line) {
     Result<editor::Action> a = editor::parseAction(line);
     if (!a) return a.error();
-    return editor::runDebugAction(s, a.value());
+    const FroxelSettings froxels{16, 32, 0.5f, 50.0f, 2.0f};
+    return editor::runDebugAction(s, a.value(), froxels);
 }
 
 const std::string kDefaultScene = std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json";
@@ -53,10 +54,22 @@ TEST(EditorDebug, DebugActionSetsViewSliceAndGridAndRejectsBadInput) {
     EXPECT_EQ(s.slice, 12);
     ASSERT_TRUE(debugAction(s, "debug slice 3").ok());
     EXPECT_EQ(s.slice, 3);
+    // By depth: the slice whose depth range holds it, at every depth of the grid.
+    for (float z : {0.0f, 0.3f, 0.5f, 1.0f, 7.25f, 20.0f, 49.9f}) {
+        ASSERT_TRUE(debugAction(s, "debug depth " + std::to_string(z)).ok()) << z;
+        const float n = 32.0f;
+        const float z1 = shd::viewDepthFromSliceT(static_cast<float>(s.slice + 1) / n, 0.5f, 50.0f, 2.0f);
+        const float z0 = s.slice == 0 ? 0.0f : shd::viewDepthFromSliceT(static_cast<float>(s.slice) / n, 0.5f, 50.0f, 2.0f);
+        EXPECT_LE(z0, z + 1e-4f) << z;
+        EXPECT_LT(z, z1 + 1e-4f) << z;
+    }
+    ASSERT_TRUE(debugAction(s, "debug depth 1000").ok());  // past the grid: its last slice
+    EXPECT_EQ(s.slice, 31);
+    ASSERT_TRUE(debugAction(s, "debug slice 3").ok());
     ASSERT_TRUE(debugAction(s, "debug grid on").ok());
     EXPECT_TRUE(s.grid);
     for (const char* bad : {"debug", "debug fog", "debug density -1", "debug density 5000", "debug slice x",
-                            "debug grid maybe", "debug density 1 2"}) {
+                            "debug grid maybe", "debug density 1 2", "debug depth -2", "debug depth x"}) {
         const editor::DebugViewState before = s;
         EXPECT_FALSE(debugAction(s, bad).ok()) << bad;
         EXPECT_EQ(s.view, before.view) << bad;

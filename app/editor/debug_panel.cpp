@@ -49,6 +49,11 @@ void debugSection(Editor& e, double now) {
     const int slices = e.lastRender() ? e.lastRender()->dims.z : 1;
     int slice = std::min(d.slice, slices - 1);
     if (ImGui::SliderInt("slice", &slice, 0, slices - 1)) run(e, "debug slice " + std::to_string(slice), now);
+    // The same choice by view depth: the slider shows the chosen slice's far side.
+    const FroxelSettings fs = resolveFroxelSettings(e.doc().scene(), e.quality());
+    float depth = shd::viewDepthFromSliceT(static_cast<float>(std::min(slice, fs.slices - 1) + 1) / static_cast<float>(fs.slices),
+                                           fs.near, fs.far, fs.distribution);
+    if (ImGui::SliderFloat("depth [m]", &depth, 0.0f, fs.far, "%.2f")) run(e, "debug depth " + std::to_string(depth), now);
     bool grid = d.grid;
     if (ImGui::Checkbox("froxel grid", &grid)) run(e, std::string("debug grid ") + (grid ? "on" : "off"), now);
     if (d.view != shd::DEBUG_VIEW_FINAL) {

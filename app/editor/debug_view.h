@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/quality.h"
 #include "core/result.h"
 #include "document.h"
 
@@ -18,7 +19,8 @@ struct DebugViewState {
 };
 
 // debug final|density|scattering|transmittance [SLICE]   (SLICE kept when omitted)
-// debug slice SLICE, debug grid on|off
-Result<void> runDebugAction(DebugViewState& state, const Action& action);
+// debug slice SLICE, debug depth METRES (the slice holding that view depth in the grid `froxels`),
+// debug grid on|off
+Result<void> runDebugAction(DebugViewState& state, const Action& action, const FroxelSettings& froxels);
 
 }  // namespace brume::editor

@@ -79,7 +79,7 @@ Result<void> Editor::dispatch(const Action& a) {
         quality_ = q;
         return {};
     }
-    if (a.verb == "debug") return runDebugAction(debug_, a);
+    if (a.verb == "debug") return runDebugAction(debug_, a, resolveFroxelSettings(doc_.scene(), quality_));
     if (a.verb == "wait") {
         if (a.args.size() != 1 || !number(a.args[0], v) || v < 0) return Error{"wait takes a number of seconds."};
         waitSeconds = v;
