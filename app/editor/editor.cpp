@@ -196,16 +196,16 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     viewport_.height = height;
     viewport_.pixels.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
     const Image& img = out.value().image;
+    // Debug views are display values already (as `brume render --debug-view` writes them).
+    const bool debug = debug_.view != shd::DEBUG_VIEW_FINAL;
     for (size_t i = 0; i < img.pixels.size(); ++i) {
-        // Debug views are display values already (as `brume render --debug-view` writes them).
-        const bool debug = debug_.view != shd::DEBUG_VIEW_FINAL;
         const glm::vec3 d = debug ? img.pixels[i] : shd::displayFromRadiance(img.pixels[i], 1.0f);
         viewport_.pixels[i * 4 + 0] = toByte(d.x);
         viewport_.pixels[i * 4 + 1] = toByte(d.y);
         viewport_.pixels[i * 4 + 2] = toByte(d.z);
         viewport_.pixels[i * 4 + 3] = 255;
     }
-    if (debug_.view != shd::DEBUG_VIEW_FINAL) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
+    if (debug) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
     last_ = std::move(out.value());
     return {};
 }
