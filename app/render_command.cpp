@@ -18,6 +18,7 @@
 #endif
 
 #include "cli_text.h"
+#include "core/debug_view.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_json.h"
@@ -156,6 +157,10 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                     "milliseconds, froxel grid size, lit and skipped froxels. Written atomically. Default: none.");
     o.exposure = settings::cli_exposure.f();
     cmd->add_option("--exposure", o.exposure, optionHelp(settings::cli_exposure));
+    o.debugView = settings::cli_debug_view.choices.substr(0, settings::cli_debug_view.choices.find('|'));
+    cmd->add_option("--debug-view", o.debugView, optionHelp(settings::cli_debug_view));
+    o.debugSlice = settings::cli_debug_slice.i();
+    cmd->add_option("--debug-slice", o.debugSlice, optionHelp(settings::cli_debug_slice));
     o.threads = settings::cli_threads.i();
     cmd->add_option("--threads", o.threads, optionHelp(settings::cli_threads));
     o.vdbMemoryMb = settings::cli_vdb_memory.i();
@@ -183,6 +188,15 @@ static std::optional<CommandResult> checkOutputPath(const std::string& out) {
     return std::nullopt;
 }
 
+static std::optional<CommandResult> checkDebugView(const RenderOptions& o) {
+    int view = 0;
+    if (!parseDebugView(o.debugView, view))
+        return badInput("--debug-view '" + o.debugView + "' is not one of " + std::string(settings::cli_debug_view.choices) + ".");
+    if (view != shd::DEBUG_VIEW_FINAL && o.reference)
+        return badInput("--debug-view shows froxel volumes; the reference renderer (--reference) has none.");
+    return checkRange("--debug-slice", o.debugSlice, settings::cli_debug_slice);
+}
+
 static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
     if (o.widthOption->count() > 0)
         if (auto e = checkRange("--width", o.width, settings::render_width)) return e;
@@ -199,6 +213,7 @@ static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
     if (auto e = checkRange("--exposure", o.exposure, settings::cli_exposure)) return e;
     if (auto e = checkRange("--vdb-memory-mb", o.vdbMemoryMb, settings::cli_vdb_memory)) return e;
     if (auto e = checkRange("--threads", o.threads, settings::cli_threads)) return e;
+    if (auto e = checkDebugView(o)) return e;
     if (!o.statsPath.empty()) {
         const fs::path dir = fs::path(o.statsPath).parent_path().empty() ? fs::path(".") : fs::path(o.statsPath).parent_path();
         std::error_code ec;
@@ -214,6 +229,8 @@ static RenderRequest requestFromOptions(const Scene& scene, const RenderOptions&
     if (o.qualityOption->count() > 0) parseQuality(o.quality, r.quality);
     r.frames = o.frames;
     r.threads = o.threads;
+    parseDebugView(o.debugView, r.debugView);
+    r.debugSlice = o.debugSlice;
     return r;
 }
 
@@ -259,6 +276,12 @@ void printClusterWarning(const std::string& scenePath, const RenderStats& stats)
                  scenePath.c_str(), stats.overfullClusters, shd::CLUSTER_MAX_LIGHTS);
 }
 
+// Debug views are display values already: PNG as they are, EXR as for any image.
+static Result<void> writeOutput(const Image& image, const RenderOptions& o, bool debugView) {
+    if (debugView && fs::path(o.outputPath).extension() != ".exr") return writeDisplayPng(image, o.outputPath);
+    return writeImage(image, o.outputPath, o.exposure);
+}
+
 CommandResult runRender(const RenderOptions& o) {
     if (auto e = checkOptions(o)) return *e;
     Result<Scene> scene = loadSceneFile(o.scenePath);
@@ -286,7 +309,10 @@ CommandResult runRender(const RenderOptions& o) {
                                o.outputPath + " was not written.");
     }
     // Failing to write is about the path or the disk, which the user can fix.
-    if (Result<void> w = writeImage(out.image, o.outputPath, o.exposure); !w) return badInput(w.error().message);
+    if (Result<void> w = writeOutput(out.image, o, request.debugView != shd::DEBUG_VIEW_FINAL); !w)
+        return badInput(w.error().message);
+    if (request.debugView != shd::DEBUG_VIEW_FINAL) 
+        std::printf("debug view: %s\n", debugViewLegend(scene.value(), request).c_str());
     if (!o.statsPath.empty()) {
         if (Result<void> w = writeStatsJson(o.statsPath, kind, request, out.stats); !w) return badInput(w.error().message);
     }

@@ -93,6 +93,8 @@ struct RenderOptions {
     bool cpu = false;
     std::string device;     // --device, GPU renderer
     std::string statsPath;  // --stats
+    std::string debugView;  // --debug-view
+    int debugSlice = 0;     // --debug-slice
     // Set by addRenderCommand, to tell given options from scene defaults.
     CLI::Option* widthOption = nullptr;
     CLI::Option* heightOption = nullptr;

@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include "clusters.h"
+#include "debug_view.h"
 #include "froxel_frame.h"
 #include "geometry.h"
 #include "parallel.h"
@@ -225,6 +226,8 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
 
     parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, sun, v, result.image, y); },
                 report);
+    if (request.debugView != shd::DEBUG_VIEW_FINAL)
+        result.image = debugViewImage(v, request.debugView, request.debugSlice);
     return result;
 }
 

@@ -27,6 +27,10 @@ struct RenderRequest {
     int threads = 0;       // 0 = every core
     int shadowReduction = 0;  // fog transmittance volume reduction (core/shadows.h); 0 = the quality's
     bool lightCulling = true;  // froxel renderers: light pass loops over its cluster's lights (core/clusters.h)
+    // Froxel renderers: shd::DEBUG_VIEW_* other than FINAL replaces the image by one depth slice of a
+    // volume (shaders/shared/debug_view.h, core/debug_view.h); debugSlice is clamped to the grid.
+    int debugView = shd::DEBUG_VIEW_FINAL;
+    int debugSlice = 0;
     ProgressFn progress;   // optional
 };
 

@@ -127,6 +127,8 @@ inline constexpr std::array kAll = {
 // clang-format off
 inline constexpr Setting cli_exposure     {"--exposure", K::Number, "", 1e-6, 1e6, {1}, "", "Multiplies radiance before the PNG tone curve; EXR is written linear and unscaled."};
 inline constexpr Setting cli_frames       {"--frames", K::Integer, "", 1, 1024, {1}, "", "Frames rendered with temporal accumulation; the last is written (froxel renderers; the reference ignores it)."};
+inline constexpr Setting cli_debug_view   {"--debug-view", K::Choice, "", 0, 0, {0}, "final|density|scattering|transmittance", "Froxel renderers: write one depth slice of a froxel volume instead of the image: density (sigma_t, log ramp 0.001..100 1/m), scattering (S, log ramp 1e-4..100 radiance/m) or transmittance (grey 0..1); PNG without exposure or tone curve (docs/cli.md)."};
+inline constexpr Setting cli_debug_slice  {"--debug-slice", K::Integer, "", 0, 4095, {0}, "", "Froxel depth slice the debug view shows (0 = nearest the camera); clamped to the grid's last slice."};
 inline constexpr Setting cli_orbit        {"--orbit", K::Number, "deg", -180, 180, {0}, "", "Camera path for --frames: frame n turns the camera by n times this about its target (axis: camera.up); 0 = static."};
 inline constexpr Setting cli_time         {"--time", K::Number, "s", -kBig, kBig, {0}, "", "Scene time of the image written: density textures have scrolled by scroll_mps x time."};
 inline constexpr Setting cli_fps          {"--fps", K::Number, "1/s", 1e-3, 1000, {24}, "", "Frame rate of --frames: frame n of N is at time - (N - 1 - n) / fps, so the last (written) frame is at --time."};

@@ -229,6 +229,12 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
     computeToComputeBarrier(cmd);
     recordComposite(cmd, composite, bindings, res.size);
     timer.end(cmd);
+    if (debugParams.view.x != shd::DEBUG_VIEW_FINAL) {
+        timer.begin(cmd, "debug view");
+        computeToComputeBarrier(cmd);
+        recordDebugView(cmd, debugView, bindings, res.size, debugParams);
+        timer.end(cmd);
+    }
     recordReadback(readBackVolumes);
 }
 

@@ -55,7 +55,8 @@ Result<void> GpuRenderer::State::createPasses() {
     for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&voxelizeVdb, &createVoxelizeVdbPass},
                                 std::pair{&shadowVolume, &createShadowVolumePass},
                                 std::pair{&light, &createLightPass}, std::pair{&temporal, &createTemporalPass},
-                                std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
+                                std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass},
+                                std::pair{&debugView, &createDebugViewPass}}) {
         Result<ComputePass> p = create(*device, layout);
         if (!p) return p.error();
         *pass = std::move(p.value());
@@ -144,6 +145,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
 
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
     // decides, as for the CPU renderer); only the last is read back.
+    s_->debugParams.view = glm::ivec4(request.debugView, request.debugSlice, 0, 0);
     const uint64_t sceneKey = temporalSceneKey(cs, scene, dims);
     HistoryMode mode = request.history;
     const int frames = std::max(request.frames, 1);

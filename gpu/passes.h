@@ -7,6 +7,7 @@
 
 #include "frame_resources.h"
 #include "pipeline.h"
+#include "shaders/shared/brume.h"
 
 namespace brume::gpu {
 
@@ -57,5 +58,11 @@ void recordIntegrate(VkCommandBuffer cmd, const ComputePass& pass, const Descrip
 // Composite. in: frame, integrated*, sceneColor, sceneDepth. out: output.
 Result<ComputePass> createCompositePass(const Device& device, VkPipelineLayout layout);
 void recordComposite(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec2 size);
+
+// Debug view (only when RenderRequest::debugView asks). in: frame, mediaExtinction | source |
+// integratedTransmittance. out: output, overwritten with the slice's display colours.
+Result<ComputePass> createDebugViewPass(const Device& device, VkPipelineLayout layout);
+void recordDebugView(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec2 size,
+                     const shd::DebugViewParams& params);
 
 }  // namespace brume::gpu

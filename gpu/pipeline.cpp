@@ -4,6 +4,7 @@
 
 #include "frame_resources.h"
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/brume.h"
 #include "spirv.h"
 #include "vk_check.h"
 
@@ -44,6 +45,10 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     VkPipelineLayoutCreateInfo plInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     plInfo.setLayoutCount = 1;
     plInfo.pSetLayouts = &setLayout;
+    // The debug view pass's parameters; the other passes ignore them.
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(shd::DebugViewParams)};
+    plInfo.pushConstantRangeCount = 1;
+    plInfo.pPushConstantRanges = &push;
     VkPipelineLayout pl = VK_NULL_HANDLE;
     BRUME_VK(vkCreatePipelineLayout(device.vk(), &plInfo, nullptr, &pl), "create the pipeline layout");
     b.pipelineLayout = PipelineLayoutOwner(device.vk(), pl);

@@ -15,7 +15,7 @@
 namespace brume::gpu {
 
 inline constexpr VkFormat kVolumeFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-inline constexpr uint32_t kMaxPasses = 8;
+inline constexpr uint32_t kMaxPasses = 9;
 // TRANSFER_DST: the temporal pass copies its result over source and mediaExtinction.
 inline constexpr VkImageUsageFlags kVolumeUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -34,6 +34,8 @@ struct GpuRenderer::State {
     // index: the scene has vdb volumes (0/1).
     std::array<ComputePass, 2> voxelizeTexture;
     bool frameHasVdbVolumes = false, frameHasTextures = false;  // this frame's voxelize variant
+    ComputePass debugView;
+    shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;

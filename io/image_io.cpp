@@ -84,13 +84,12 @@ Result<void> writeImage(const Image& img, const std::string& path, float exposur
                  "\"; supported: .png (8-bit sRGB, tone mapped), .exr (linear float)"};
 }
 
-Result<void> writePng(const Image& img, const std::string& path, float exposure) {
-    if (Result<void> r = checkWritable(img, path); !r) return r;
-    if (!std::isfinite(exposure) || exposure < 0.0f)
-        return Error{path + ": exposure " + std::to_string(exposure) + " must be finite and not negative"};
+// 8 bits per channel of display(pixel) in [0, 1].
+template <class Display>
+static Result<void> writePngOf(const Image& img, const std::string& path, Display display) {
     std::vector<unsigned char> bytes(img.pixels.size() * 3);
     for (size_t i = 0; i < img.pixels.size(); ++i) {
-        const glm::vec3 d = shd::displayFromRadiance(img.pixels[i], exposure);
+        const glm::vec3 d = display(img.pixels[i]);
         for (int c = 0; c < 3; ++c) bytes[i * 3 + static_cast<size_t>(c)] = toByte(d[c]);
     }
     return writeFileAtomic(path, [&](const std::string& tmpPath) -> Result<void> {
@@ -98,6 +97,18 @@ Result<void> writePng(const Image& img, const std::string& path, float exposure)
             return Error{path + ": cannot write the PNG data"};
         return {};
     });
+}
+
+Result<void> writePng(const Image& img, const std::string& path, float exposure) {
+    if (Result<void> r = checkWritable(img, path); !r) return r;
+    if (!std::isfinite(exposure) || exposure < 0.0f)
+        return Error{path + ": exposure " + std::to_string(exposure) + " must be finite and not negative"};
+    return writePngOf(img, path, [exposure](glm::vec3 p) { return shd::displayFromRadiance(p, exposure); });
+}
+
+Result<void> writeDisplayPng(const Image& img, const std::string& path) {
+    if (Result<void> r = checkWritable(img, path); !r) return r;
+    return writePngOf(img, path, [](glm::vec3 p) { return p; });
 }
 
 Result<void> writeExr(const Image& img, const std::string& path, bool half) {

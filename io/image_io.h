@@ -17,6 +17,10 @@ Result<void> writeImage(const Image& img, const std::string& path, float exposur
 // 8-bit sRGB of shd::displayFromRadiance(radiance, exposure). Written atomically.
 Result<void> writePng(const Image& img, const std::string& path, float exposure = 1.0f);
 
+// 8-bit values of pixels that already are display values in [0, 1] (debug views): no exposure, no
+// tone curve, no sRGB encoding. Written atomically.
+Result<void> writeDisplayPng(const Image& img, const std::string& path);
+
 // Linear RGB, no tone map: 32-bit float channels R, G, B, or 16-bit half (RGB only; magnitudes above
 // 65504, the largest half, are clamped to it). Written atomically.
 Result<void> writeExr(const Image& img, const std::string& path, bool half = false);

@@ -10,7 +10,7 @@ BRUME_PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev spirv-tools vulkan-validationlayers
   libglm-dev libimgui-dev libglfw3-dev libstb-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev
-  xvfb xauth
+  xvfb xauth xdotool
 )
 
 brume_missing_packages() {

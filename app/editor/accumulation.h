@@ -19,6 +19,8 @@ struct ViewKey {
     Quality quality = Quality::Low;
     int width = 0;
     int height = 0;
+    int debugView = 0;  // DebugViewState (debug_view.h): another slice is another image
+    int debugSlice = 0;
     bool operator==(const ViewKey&) const = default;
 };
 

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/debug_view.h"
 #include "core/quality.h"
 #include "tonemap.h"
 #include "view.h"
@@ -85,6 +86,7 @@ Result<void> Editor::dispatch(const Action& a) {
         quality_ = q;
         return {};
     }
+    if (a.verb == "debug") return runDebugAction(debug_, a, resolveFroxelSettings(doc_.scene(), quality_));
     if (a.verb == "wait") {
         if (a.args.size() != 1 || !number(a.args[0], v) || v < 0) return Error{"wait takes a number of seconds."};
         waitSeconds = v;
@@ -217,13 +219,15 @@ Result<void> Editor::viewAction(const Action& a) {
 }
 
 Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
-    const ViewKey key{doc_.revision(), quality_, width, height};
+    const ViewKey key{doc_.revision(), quality_, width, height, debug_.view, debug_.slice};
     if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
     RenderRequest request;
     request.width = width;
     request.height = height;
     request.quality = quality_;
     request.history = HistoryMode::Continue;
+    request.debugView = debug_.view;
+    request.debugSlice = debug_.slice;
     Result<gpu::GpuRender> out = renderer.render(visibleScene(doc_.scene()), request);
     accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
     if (!out) return out.error();
@@ -231,13 +235,16 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     viewport_.height = height;
     viewport_.pixels.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
     const Image& img = out.value().image;
+    // Debug views are display values already (as `brume render --debug-view` writes them).
+    const bool debug = debug_.view != shd::DEBUG_VIEW_FINAL;
     for (size_t i = 0; i < img.pixels.size(); ++i) {
-        const glm::vec3 d = shd::displayFromRadiance(img.pixels[i], 1.0f);
+        const glm::vec3 d = debug ? img.pixels[i] : shd::displayFromRadiance(img.pixels[i], 1.0f);
         viewport_.pixels[i * 4 + 0] = toByte(d.x);
         viewport_.pixels[i * 4 + 1] = toByte(d.y);
         viewport_.pixels[i * 4 + 2] = toByte(d.z);
         viewport_.pixels[i * 4 + 3] = 255;
     }
+    if (debug) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
     last_ = std::move(out.value());
     return {};
 }

@@ -11,6 +11,7 @@
 
 #include "accumulation.h"
 #include "autosave.h"
+#include "debug_view.h"
 #include "document.h"
 #include "files.h"
 #include "gizmo_math.h"
@@ -41,6 +42,7 @@ public:
     //   fly RIGHT UP FORWARD [m], look YAW_DEG PITCH_DEG (fly camera), frame (the selection),
     //   pick U V (select the volume or light under window fractions U, V from the top-left)
     //   quality low|medium|high|ultra (the viewport's preset; not saved in the scene)
+    //   debug ... (the viewport's debug view, debug_view.h)
     //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
     //   gizmo translate|rotate|scale (the gizmo's mode: W / E / R)
     //   new [--discard], open PATH [--discard], import vdb PATH   (files.h; Save goes on to Document)
@@ -55,6 +57,7 @@ public:
     Files& files() { return files_; }
     Selection& selection() { return selection_; }
     Quality quality() const { return quality_; }
+    DebugViewState& debugView() { return debug_; }
 
     // Renders when the document, quality or size changed since the last render, or while the
     // temporal accumulation of a resting view has not converged (or always with `force`), with the
@@ -92,6 +95,7 @@ private:
     Files files_{RecentFiles(recentFilesPath())};
     Selection selection_;
     Quality quality_;
+    DebugViewState debug_;
     Rgba8 viewport_;
     std::optional<gpu::GpuRender> last_;
     Accumulation accumulation_;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/settings.h"
+#include "debug_panel.h"
 #include "gizmo.h"
 #include "view.h"
 #include "io/scene_json.h"
@@ -226,7 +227,7 @@ void outliner(Editor& e, double now) {
 void stats(Editor& e, UiState& ui, double now) {
     if (!ui.showStats) return;
     ImGui::SetNextWindowPos(ImVec2(10, 340), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(260, 250), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(260, 370), ImGuiCond_FirstUseEver);  // room for the Debug section
     ImGui::Begin("Stats", &ui.showStats);
     const char* names[] = {"low", "medium", "high", "ultra"};
     int q = static_cast<int>(e.quality());
@@ -242,6 +243,7 @@ void stats(Editor& e, UiState& ui, double now) {
         ImGui::Text("lit %zu  skipped %zu", r->litFroxels, r->skippedFroxels);
         for (const gpu::PassTiming& p : r->passes) ImGui::Text("  %-10s %7.2f ms", p.name.c_str(), p.gpuMs);
     }
+    debugSection(e, now);
     ImGui::End();
 }
 
@@ -353,6 +355,7 @@ void drawUi(Editor& e, UiState& ui, double now) {
     outliner(e, now);
     inspector(e, now);
     stats(e, ui, now);
+    froxelGridOverlay(e);
     help(ui);
     drawFiles(e, ui.files, now);
     notifications(e, now);
@@ -427,7 +430,10 @@ void handleViewportInput(Editor& e, UiState& ui, double now) {
         runOrNotify(e, "pick " + fmt(io.MousePos.x / w.x) + " " + fmt(io.MousePos.y / w.y), now);
     const ImVec2 d = io.MouseDelta;
     const float h = std::max(1.0f, io.DisplaySize.y);
-    const bool moved = d.x != 0.0f || d.y != 0.0f;
+    // The press frame's delta is the pointer's travel before the press, not a drag (found by
+    // tests/test_editor_input.cpp: a click after a jump orbited the camera).
+    const bool pressed = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2);
+    const bool moved = (d.x != 0.0f || d.y != 0.0f) && !pressed;
     if (moved && ImGui::IsMouseDown(0) && !io.KeyShift)
         runOrNotify(e, "orbit " + fmt(-d.x * 0.3) + " " + fmt(d.y * 0.3), now);
     else if (moved && ImGui::IsMouseDown(1))

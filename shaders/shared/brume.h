@@ -16,4 +16,5 @@
 #include "clusters.h"
 #include "sun_shadow.h"
 #include "tonemap.h"
+#include "debug_view.h"
 #endif
