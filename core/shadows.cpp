@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "local_shadow.h"
 #include "parallel.h"
 
 namespace brume {
@@ -15,6 +16,7 @@ int shadowVolumeReduction(Quality q) { return q == Quality::Low ? 4 : 2; }
 void applyShadowSettings(shd::FrameUniforms& frame, const RenderRequest& request) {
     frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
     frame.shadows.y = request.shadowReduction > 0 ? request.shadowReduction : shadowVolumeReduction(request.quality);
+    frame.shadows.w = localShadowMapResolution(request.quality);
 }
 
 glm::vec3 lightFogTransmittance(const CompiledScene& cs, const shd::LightData& l, glm::vec3 p, glm::vec3 toLight,

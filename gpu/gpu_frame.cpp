@@ -135,7 +135,8 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 }
 
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
-                                         size_t vertexBytes, int shadowReduction, size_t sunShadowBytes) {
+                                         size_t vertexBytes, int shadowReduction, size_t sunShadowBytes,
+                                         size_t localShadowBytes) {
     bool dirty = false;
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     BRUME_TRY(ensureBuffer(res.frame, sizeof(shd::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Memory::Upload,
@@ -166,6 +167,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            dirty));
     BRUME_TRY(ensureBuffer(res.sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), storage,
                            Memory::Upload, "sun shadow map", dirty));
+    BRUME_TRY(ensureBuffer(res.localShadowMaps, std::max<size_t>(localShadowBytes, 4), storage, Memory::Upload,
+                           "local shadow maps", dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }

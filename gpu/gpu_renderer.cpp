@@ -129,7 +129,10 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
                                                 request.threads);
     const size_t sunBytes = sun.depth.size() * sizeof(float);
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes));
+    const LocalShadowMaps& local = s_->localShadows.get(cs, scene.geometry, frame.shadows.w, request.threads);
+    const size_t localBytes = local.depth.size() * sizeof(float);
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes,
+                          localBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
@@ -141,6 +144,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     std::memcpy(r.sunShadowMap.mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
         std::memcpy(static_cast<char*>(r.sunShadowMap.mapped) + sizeof(sun.fit), sun.depth.data(), sunBytes);
+    if (localBytes > 0) std::memcpy(r.localShadowMaps.mapped, local.depth.data(), localBytes);
 
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
     // decides, as for the CPU renderer); only the last is read back.

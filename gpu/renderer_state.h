@@ -5,6 +5,7 @@
 #include <array>
 
 #include "core/compile.h"
+#include "core/local_shadow.h"
 #include "core/sun_shadow.h"
 #include "core/temporal.h"
 #include "frame_resources.h"
@@ -31,6 +32,7 @@ struct GpuRenderer::State {
     ComputePass voxelize, voxelizeVdb, shadowVolume, light, integrate, composite;
     ComputePass temporal;
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
+    LocalShadowCache localShadows;  // the host-built point/spot maps, each kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
     FrameResources res;
@@ -45,7 +47,7 @@ struct GpuRenderer::State {
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
-                         int shadowReduction, size_t sunShadowBytes);
+                         int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                      int historyWriteIndex);
     void recordReadback(bool readBackVolumes);

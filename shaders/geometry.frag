@@ -5,6 +5,7 @@
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
+#include "local_shadow.glsl"
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -29,7 +30,7 @@ void main() {
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
         radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *
-                    sunShadowVisibility(i, origin);
+                    sunShadowVisibility(i, origin) * localShadowVisibility(i, origin);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

@@ -14,5 +14,6 @@
 #include "shadow_volume.h"
 #include "clusters.h"
 #include "sun_shadow.h"
+#include "local_shadow.h"
 #include "tonemap.h"
 #endif
