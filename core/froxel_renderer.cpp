@@ -13,6 +13,7 @@
 #include "clusters.h"
 #include "froxel_frame.h"
 #include "geometry.h"
+#include "light_reach.h"
 #include "local_shadow.h"
 #include "parallel.h"
 #include "progress.h"
@@ -199,8 +200,10 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(rows, threads, [&](int r) { voxelizeRow(cs, v, r % v.dims.y, r / v.dims.y); }, report);
     progress.finishedPass(rows);
 
-    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
+    // Layers of lights that touch nothing shaded are skipped: nobody reads them.
+    const LightReach reach = buildLightReach(cs, frame, request.lightCulling);
+    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads, &reach.shadowVolume);
     v.overfullClusters = clusters.overfullClusters;
     const GeometrySet geometry(scene.geometry);
     const SunShadowMap& sun =

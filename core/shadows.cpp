@@ -44,7 +44,7 @@ shd::ShadowBlend blendShadowCells(const ShadowVolume& sv, int light, const shd::
 }  // namespace
 
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
-                                 int threads) {
+                                 int threads, const std::vector<int>* layers) {
     ShadowVolume sv;
     sv.reduction = reduction;
     const glm::ivec3 froxelDims = glm::ivec3(frame.froxelDims);
@@ -57,6 +57,7 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
         const int y = r % sv.dims.y, z = (r / sv.dims.y) % sv.dims.z, light = r / (sv.dims.y * sv.dims.z);
         const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
         if (!shd::fogShadowsLight(l, frame.shadows.x)) return;
+        if (layers && (*layers)[static_cast<size_t>(light)] == 0) return;
         for (int x = 0; x < sv.dims.x; ++x) {
             const glm::ivec3 froxel = shd::shadowCellFroxel(glm::ivec3(x, y, z), froxelDims, reduction);
             const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(froxel) + glm::vec3(frame.jitter), frame);

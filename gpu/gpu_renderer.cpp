@@ -6,6 +6,7 @@
 
 #include "core/clusters.h"
 #include "core/compile.h"
+#include "core/light_reach.h"
 #include "core/shadows.h"
 #include "core/sun_shadow.h"
 #include "geometry_mesh.h"
@@ -140,6 +141,9 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r.lightClusters.mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
+    const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, request.lightCulling), cs.lights.size());
+    std::memcpy(static_cast<int*>(r.lightClusters.mapped) + clusters.records.size(), reach.data(),
+                reach.size() * sizeof(int));
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
     std::memcpy(r.sunShadowMap.mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)

@@ -13,6 +13,8 @@ void main() {
     ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadows.y);
     int light = id.z / cells.z;
     if (id.x >= cells.x || id.y >= cells.y || light >= frame.counts.w) return;
+    // Layers of lights that touch nothing shaded are never read (core/light_reach.h).
+    if (lightClusters[lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w + light] == 0) return;
     ivec3 cell = ivec3(id.xy, id.z - light * cells.z);
     ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadows.y);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);

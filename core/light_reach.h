@@ -1,0 +1,35 @@
+// Which lights can touch anything a frame shades (docs/gpu.md, "Light reach"): the per-frame
+// complement of the light clusters (core/clusters.h) for the passes the clusters do not cover.
+//   surface lights   lights whose range can reach the camera frustum (near to far), fog_scale
+//                    ignored: the geometry pass loops over these only;
+//   shadow volume    per light, whether its layer of the transmittance volume is computed: it is
+//                    fog-shadowed (shd::fogShadowsLight), reaches the froxel grid, and some reader
+//                    needs it (fog_scale > 0 for the light pass, a surface light for the surfaces).
+// Both are conservative: a light left out contributes exactly 0 wherever it is left out, so the
+// image is the unculled one, bit for bit on the CPU. Uploaded after the cluster records
+// (shd::lightReachOffset).
+#pragma once
+
+#include <vector>
+
+#include "compile.h"
+
+namespace brume {
+
+struct LightReach {
+    std::vector<int> surfaceLights;  // light indices, ascending
+    std::vector<int> shadowVolume;   // per light: 1 = its transmittance layer is computed
+};
+
+// culling = false: every light is a surface light and every fog-shadowed light gets its layer.
+LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, bool culling = true);
+
+// Whether light l's range window can reach a point of the camera frustum between the camera near
+// and far (the surface-light test; fog_scale is not looked at).
+bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame);
+
+// The ints the GPU reads after the cluster records: [n surface lights, their indices, padded to
+// the light count], then the shadow-volume flags; 1 + 2 x lights ints.
+std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount);
+
+}  // namespace brume
