@@ -202,7 +202,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
 
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     // Layers of lights that touch nothing shaded are skipped: nobody reads them.
-    const LightReach reach = buildLightReach(cs, frame, request.lightCulling);
+    const LightReach reach = buildLightReach(cs, frame, clusters, request.lightCulling);
     const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads, &reach.shadowVolume);
     v.overfullClusters = clusters.overfullClusters;
     const GeometrySet geometry(scene.geometry);

@@ -11,51 +11,48 @@ namespace {
 // outside the frustum; a light grazing it must not be culled by rounding.
 constexpr float kSlack = 1.0e-3f;
 
-// The axis-aligned box around the froxel grid's eight corners (the grid is a convex frustum).
-void froxelGridBox(const shd::FrameUniforms& frame, glm::vec3& lo, glm::vec3& hi) {
-    const glm::vec3 dims(glm::ivec3(frame.froxelDims));
-    lo = glm::vec3(shd::BRUME_HUGE);
-    hi = glm::vec3(-shd::BRUME_HUGE);
-    for (int k = 0; k < 8; ++k) {
-        const glm::vec3 corner((k & 1) ? dims.x : 0.0f, (k & 2) ? dims.y : 0.0f, (k & 4) ? dims.z : 0.0f);
-        const glm::vec3 w = shd::worldFromFroxelCoord(corner, frame);
-        lo = glm::min(lo, w);
-        hi = glm::max(hi, w);
+// Lights some cluster lists (every light that can reach one, when a cluster is over-full and
+// loops over all of them).
+std::vector<char> listedInClusters(const LightClusters& clusters, size_t lightCount) {
+    std::vector<char> listed(lightCount, 0);
+    for (size_t r = 0; r < clusters.records.size(); r += shd::CLUSTER_STRIDE) {
+        const int n = clusters.records[r];
+        if (n == shd::CLUSTER_ALL_LIGHTS) return std::vector<char>(lightCount, 1);
+        for (int k = 0; k < n; ++k) listed[static_cast<size_t>(clusters.records[r + 1 + static_cast<size_t>(k)])] = 1;
     }
+    return listed;
 }
 
 }  // namespace
 
-bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame) {
+bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth) {
     if (glm::vec3(l.intensity) == glm::vec3(0.0f)) return false;
     const float range = l.positionRange.w;
     if (l.kind.x == shd::LIGHT_DIRECTIONAL || range <= 0.0f) return true;
     const glm::vec3 q = glm::vec3(frame.viewFromWorld * glm::vec4(glm::vec3(l.positionRange), 1.0f));
     const float depth = -q.z;
-    const float reach = range + kSlack * (range + glm::length(q) + frame.projection.w);
+    const float reach = range + kSlack * (range + glm::length(q) + farDepth);
     const float tx = frame.projection.x, ty = frame.projection.y;
     // Signed distances outside the near, far and four side planes (view space, camera at 0).
-    if (frame.projection.z - depth > reach || depth - frame.projection.w > reach) return false;
+    if (nearDepth - depth > reach || depth - farDepth > reach) return false;
     if ((std::abs(q.x) - tx * depth) / std::sqrt(1.0f + tx * tx) > reach) return false;
     if ((std::abs(q.y) - ty * depth) / std::sqrt(1.0f + ty * ty) > reach) return false;
     return true;
 }
 
-LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, bool culling) {
+LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
+                           bool culling) {
     LightReach out;
     out.shadowVolume.assign(cs.lights.size(), 0);
-    glm::vec3 lo, hi;
-    froxelGridBox(frame, lo, hi);
+    const std::vector<char> listed = listedInClusters(clusters, cs.lights.size());
     for (size_t i = 0; i < cs.lights.size(); ++i) {
         const shd::LightData& l = cs.lights[i];
-        const bool surface = !culling || lightMayReachFrustum(l, frame);
+        const bool surface = !culling || lightMayReachFrustum(l, frame, frame.projection.z, frame.projection.w);
         if (surface) out.surfaceLights.push_back(static_cast<int>(i));
         if (!shd::fogShadowsLight(l, frame.shadows.x)) continue;
-        // The grid test without fog_scale, which only the light pass's readers depend on.
-        shd::LightData lit = l;
-        lit.intensity.w = 1.0f;
-        const bool read = l.intensity.w > 0.0f || surface;
-        out.shadowVolume[i] = !culling || (read && lightMayReachBox(lit, lo, hi)) ? 1 : 0;
+        // Surfaces read the volume inside the froxel grid only: from the camera to the froxel far.
+        const bool read = listed[i] || (surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
+        out.shadowVolume[i] = !culling || read ? 1 : 0;
     }
     return out;
 }

@@ -3,8 +3,9 @@
 //   surface lights   lights whose range can reach the camera frustum (near to far), fog_scale
 //                    ignored: the geometry pass loops over these only;
 //   shadow volume    per light, whether its layer of the transmittance volume is computed: it is
-//                    fog-shadowed (shd::fogShadowsLight), reaches the froxel grid, and some reader
-//                    needs it (fog_scale > 0 for the light pass, a surface light for the surfaces).
+//                    fog-shadowed (shd::fogShadowsLight) and a reader needs it: the light pass (the
+//                    light is in a cluster's list) or the surfaces (its range reaches the view
+//                    frustum up to the froxel far, where surfaces read the volume).
 // Both are conservative: a light left out contributes exactly 0 wherever it is left out, so the
 // image is the unculled one, bit for bit on the CPU. Uploaded after the cluster records
 // (shd::lightReachOffset).
@@ -12,6 +13,7 @@
 
 #include <vector>
 
+#include "clusters.h"
 #include "compile.h"
 
 namespace brume {
@@ -21,12 +23,14 @@ struct LightReach {
     std::vector<int> shadowVolume;   // per light: 1 = its transmittance layer is computed
 };
 
-// culling = false: every light is a surface light and every fog-shadowed light gets its layer.
-LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, bool culling = true);
+// The reach for `frame`, whose light pass reads `clusters`. culling = false: every light is a surface
+// light and every fog-shadowed light gets its layer.
+LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
+                           bool culling = true);
 
-// Whether light l's range window can reach a point of the camera frustum between the camera near
-// and far (the surface-light test; fog_scale is not looked at).
-bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame);
+// Whether light l's range window can reach a point of the view frustum between view depths
+// nearDepth and farDepth [m] (fog_scale is not looked at).
+bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth);
 
 // The ints the GPU reads after the cluster records: [n surface lights, their indices, padded to
 // the light count], then the shadow-volume flags; 1 + 2 x lights ints.

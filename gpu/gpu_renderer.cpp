@@ -141,7 +141,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r.lightClusters.mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
-    const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, request.lightCulling), cs.lights.size());
+    const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling), cs.lights.size());
     std::memcpy(static_cast<int*>(r.lightClusters.mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));

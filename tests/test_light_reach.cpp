@@ -85,7 +85,7 @@ TEST(LightReach, SurfaceLightsAreEveryLightThatLightsTheFrustum) {
     const Scene s = reachScene();
     const CompiledScene cs = compileScene(s);
     const shd::FrameUniforms frame = frameOf(s, cs);
-    const LightReach reach = buildLightReach(cs, frame);
+    const LightReach reach = buildLightReach(cs, frame, buildLightClusters(cs, frame));
     for (int absent : {2, 3, 5, 7}) EXPECT_FALSE(contains(reach.surfaceLights, absent)) << "light " << absent;
     for (int present : {0, 1, 4, 6, 8}) EXPECT_TRUE(contains(reach.surfaceLights, present)) << "light " << present;
     int lit = 0;
@@ -112,9 +112,10 @@ TEST(LightReach, SurfaceLightsAreEveryLightThatLightsTheFrustum) {
 TEST(LightReach, ShadowVolumeLayersOnlyForLightsThatTouchSomething) {
     const Scene s = reachScene();
     const CompiledScene cs = compileScene(s);
-    const LightReach reach = buildLightReach(cs, frameOf(s, cs));
+    const shd::FrameUniforms frame = frameOf(s, cs);
+    const LightReach reach = buildLightReach(cs, frame, buildLightClusters(cs, frame));
     EXPECT_EQ(reach.shadowVolume, (std::vector<int>{1, 1, 0, 0, 0, 0, 1, 0, 1}));
-    const LightReach all = buildLightReach(cs, frameOf(s, cs), /*culling=*/false);
+    const LightReach all = buildLightReach(cs, frame, buildLightClusters(cs, frame, false), /*culling=*/false);
     EXPECT_EQ(all.shadowVolume, std::vector<int>(cs.lights.size(), 1));
     EXPECT_EQ(all.surfaceLights.size(), cs.lights.size());
 }
