@@ -58,10 +58,12 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
 }
 
 std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount) {
-    std::vector<int> record(1 + 2 * lightCount, 0);
+    std::vector<int> record(2 + 2 * lightCount, 0);
     record[0] = static_cast<int>(reach.surfaceLights.size());
     for (size_t k = 0; k < reach.surfaceLights.size(); ++k) record[1 + k] = reach.surfaceLights[k];
-    for (size_t i = 0; i < lightCount; ++i) record[1 + lightCount + i] = reach.shadowVolume[i];
+    int* layers = &record[1 + lightCount];
+    for (size_t i = 0; i < lightCount; ++i)
+        if (reach.shadowVolume[i] != 0) layers[1 + layers[0]++] = static_cast<int>(i);
     return record;
 }
 

@@ -32,8 +32,9 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
 // nearDepth and farDepth [m] (fog_scale is not looked at).
 bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth);
 
-// The ints the GPU reads after the cluster records: [n surface lights, their indices, padded to
-// the light count], then the shadow-volume flags; 1 + 2 x lights ints.
+// The ints the GPU reads after the cluster records (shared/clusters.h lightReachOffset): the surface
+// lights and the lights with a shadow-volume layer, each as a count and its indices padded to the
+// light count; 2 + 2 x lights ints.
 std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount);
 
 }  // namespace brume

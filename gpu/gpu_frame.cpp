@@ -163,7 +163,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            "shadow transmittance", dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
     // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
-    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(clusterCount(dims)) + 1 +
+    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(clusterCount(dims)) + 2 +
                                2 * cs.lights.size();
     BRUME_TRY(ensureBuffer(res.lightClusters, clusterInts * sizeof(int), storage, Memory::Upload, "light clusters",
                            dirty));

@@ -144,6 +144,8 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling), cs.lights.size());
     std::memcpy(static_cast<int*>(r.lightClusters.mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
+    // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
+    r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadows.y).z * reach[1 + cs.lights.size()];
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
     std::memcpy(r.sunShadowMap.mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
