@@ -243,3 +243,25 @@ TEST(LocalShadowMap, CacheRebuildsOnlyWhatChanged) {
     s.lights[0].shadows = false;
     EXPECT_EQ(cache.get(compileScene(s), s.geometry, n, 2).depth, fresh(s));
 }
+
+// Degenerate lookups stay finite and in [0, 1]: the light's own position, points a hair off it or
+// 1e6 m away, and spots from a 0-degree to a 179-degree cone (the cube past 60 degrees).
+TEST(LocalShadowMap, ExtremeLookupsStayInZeroOne) {
+    Scene s = pointOverBox();
+    for (float outer : {0.0f, 1.0f, 59.9f, 60.1f, 179.0f}) {
+        Light spot = spotShaft().lights[0];
+        spot.outer_deg = outer;
+        spot.inner_deg = 0.0f;
+        s.lights.push_back(spot);
+    }
+    const CompiledScene cs = compileScene(s);
+    const LocalShadowMaps maps = buildLocalShadowMaps(cs, GeometrySet(s.geometry), 16, 2);
+    for (const shd::LightData& l : cs.lights) {
+        const glm::vec3 at(l.positionRange);
+        for (glm::vec3 off : {glm::vec3(0.0f), glm::vec3(1e-30f, 0.0f, 0.0f), glm::vec3(0.0f, -1e-7f, 0.0f),
+                              glm::vec3(3e-8f, -1e-6f, 2e-8f), glm::vec3(1e6f, -1e6f, 1.0f), glm::vec3(0.0f, -5.0f, 0.0f)}) {
+            const float v = localShadowVisibility(maps, l, at + off);
+            EXPECT_TRUE(v >= 0.0f && v <= 1.0f) << v;
+        }
+    }
+}

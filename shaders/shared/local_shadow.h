@@ -55,8 +55,9 @@ BRUME_FUNC LocalShadowFace localShadowFace(LightData l, int f) {
         face.forward = d;
         face.right = normalize(cross(helper, d));
         face.up = cross(d, face.right);
+        // At least ~0.006 degrees: an outer angle of 0 must not divide by 0 in the lookup.
         float c = l.spot.x;
-        face.tanHalf = sqrt(max(1.0f - c * c, 0.0f)) / c;
+        face.tanHalf = max(sqrt(max(1.0f - c * c, 0.0f)) / c, 1.0e-4f);
         return face;
     }
     int axis = f / 2;
@@ -100,10 +101,14 @@ BRUME_FUNC LocalShadowLookup localShadowLookup(LightData l, int n, vec3 p) {
     float z = dot(d, face.forward);
     float dist = length(d);
     LocalShadowLookup k;
-    k.inside = z > 0.0f;
+    // In front of the face by more than rounding (a point at the light is unshadowed), so that uv
+    // below stays finite.
+    k.inside = z > 1.0e-6f * dist;
     vec2 uv = k.inside ? vec2(dot(d, face.right), dot(d, face.up)) / (z * face.tanHalf) : vec2(0.0f);
     k.inside = k.inside && all(lessThanEqual(abs(uv), vec2(1.0f)));
-    vec2 t = (uv * 0.5f + vec2(0.5f)) * float(n) - vec2(0.5f);  // texel-centre coordinates
+    // Texel-centre coordinates; uv is clamped first so that a point far outside the face (unused,
+    // inside = false) cannot overflow the int conversion.
+    vec2 t = (clamp(uv, vec2(-2.0f), vec2(2.0f)) * 0.5f + vec2(0.5f)) * float(n) - vec2(0.5f);
     vec2 lower = floor(t);
     k.texel = ivec2(lower);
     k.weights = t - lower;
