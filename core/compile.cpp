@@ -152,7 +152,14 @@ CompiledScene compileScene(const Scene& scene) {
         }
         cs.textures.push_back(textured ? scene.volumes[i].density_texture->density : nullptr);
     }
-    for (const Light& l : scene.lights) cs.lights.push_back(compileLight(l));
+    int localShadowSlots = 0;
+    for (const Light& l : scene.lights) {
+        shd::LightData d = compileLight(l);
+        // Each point or spot light with shadows owns the next slot of the local shadow map array
+        // (shared/local_shadow.h), whatever the quality, so slots follow the scene alone.
+        if (d.kind.x != shd::LIGHT_DIRECTIONAL && d.kind.y != 0) d.kind.z = ++localShadowSlots;
+        cs.lights.push_back(d);
+    }
     return cs;
 }
 

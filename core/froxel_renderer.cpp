@@ -14,6 +14,8 @@
 #include "debug_view.h"
 #include "froxel_frame.h"
 #include "geometry.h"
+#include "light_reach.h"
+#include "local_shadow.h"
 #include "parallel.h"
 #include "progress.h"
 #include "render.h"
@@ -48,11 +50,10 @@ void voxelizeRow(const CompiledScene& cs, FroxelVolumes& v, int y, int s) {
 }
 
 // Pass 2. Source term S = sigma_s (sum of lights' in-scattering x fog transmittance toward the
-// light x the sun shadow map's visibility + ambient) + emission, over the lights of the froxel's
+// light x the sun's and the point/spot shadow maps' visibility + ambient) + emission, over the lights of the froxel's
 // cluster. Returns how many froxels of the row were lit.
 size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClusters& clusters, const SunShadowMap& sun,
-                FroxelVolumes& v, int y,
-                int s) {
+                const LocalShadowMaps& local, FroxelVolumes& v, int y, int s) {
     size_t lit = 0;
     for (int x = 0; x < v.dims.x; ++x) {
         const size_t i = froxelIndex(v.dims, x, y, s);
@@ -83,7 +84,7 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClus
             if (inScatter == vec3(0.0f)) continue;
             perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), shadow, p,
                                                             ls.toLight, ls.distance) *
-                         sunShadowVisibility(sun, v.frame, static_cast<int>(li), p);
+                         sunShadowVisibility(sun, v.frame, static_cast<int>(li), p) * localShadowVisibility(local, l, p);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);
@@ -131,7 +132,7 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
 void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
-                  const FroxelVolumes& v, Image& img, int y) {
+                  const LocalShadowMaps& local, const FroxelVolumes& v, Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -143,11 +144,12 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         vec3 background = cs.ambient;
         float viewDepth = cameraFar;
         if (hit.hit()) {
-            // The fog's shadow and the sun shadow map's on the surface, as the GPU's geometry pass
+            // The fog's shadow and the shadow maps' (sun, point, spot) on the surface, as the GPU's geometry pass
             // computes them; exact geometry occlusion stays off so that both renderers agree.
             const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
                 return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist) *
-                       sunShadowVisibility(sun, v.frame, i, from);
+                       sunShadowVisibility(sun, v.frame, i, from) *
+                       localShadowVisibility(local, cs.lights[static_cast<size_t>(i)], from);
             };
             background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
@@ -199,19 +201,22 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(rows, threads, [&](int r) { voxelizeRow(cs, v, r % v.dims.y, r / v.dims.y); }, report);
     progress.finishedPass(rows);
 
-    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads);
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
+    // Layers of lights that touch nothing shaded are skipped: nobody reads them.
+    const LightReach reach = buildLightReach(cs, frame, clusters, request.lightCulling);
+    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads, &reach.shadowVolume);
     v.overfullClusters = clusters.overfullClusters;
     const GeometrySet geometry(scene.geometry);
     const SunShadowMap& sun =
         history.sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality), threads);
+    const LocalShadowMaps& local = history.localShadows.get(cs, scene.geometry, frame.shadows.w, threads);
 
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);
     parallelFor(rows, threads,
                 [&](int r) {
                     litPerRow[static_cast<size_t>(r)] =
-                        lightRow(cs, shadow, clusters, sun, v, r % v.dims.y, r / v.dims.y);
+                        lightRow(cs, shadow, clusters, sun, local, v, r % v.dims.y, r / v.dims.y);
                 },
                 report);
     progress.finishedPass(rows);
@@ -224,7 +229,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(columns, threads, [&](int c) { integrateColumn(v, c % v.dims.x, c / v.dims.x); }, report);
     progress.finishedPass(columns);
 
-    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, sun, v, result.image, y); },
+    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, sun, local, v, result.image, y); },
                 report);
     if (request.debugView != shd::DEBUG_VIEW_FINAL)
         result.image = debugViewImage(v, request.debugView, request.debugSlice);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "local_shadow.h"
 #include "parallel.h"
 
 namespace brume {
@@ -15,6 +16,7 @@ int shadowVolumeReduction(Quality q) { return q == Quality::Low ? 4 : 2; }
 void applyShadowSettings(shd::FrameUniforms& frame, const RenderRequest& request) {
     frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
     frame.shadows.y = request.shadowReduction > 0 ? request.shadowReduction : shadowVolumeReduction(request.quality);
+    frame.shadows.w = localShadowMapResolution(request.quality);
 }
 
 glm::vec3 lightFogTransmittance(const CompiledScene& cs, const shd::LightData& l, glm::vec3 p, glm::vec3 toLight,
@@ -42,7 +44,7 @@ shd::ShadowBlend blendShadowCells(const ShadowVolume& sv, int light, const shd::
 }  // namespace
 
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
-                                 int threads) {
+                                 int threads, const std::vector<int>* layers) {
     ShadowVolume sv;
     sv.reduction = reduction;
     const glm::ivec3 froxelDims = glm::ivec3(frame.froxelDims);
@@ -55,6 +57,7 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
         const int y = r % sv.dims.y, z = (r / sv.dims.y) % sv.dims.z, light = r / (sv.dims.y * sv.dims.z);
         const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
         if (!shd::fogShadowsLight(l, frame.shadows.x)) return;
+        if (layers && (*layers)[static_cast<size_t>(light)] == 0) return;
         for (int x = 0; x < sv.dims.x; ++x) {
             const glm::ivec3 froxel = shd::shadowCellFroxel(glm::ivec3(x, y, z), froxelDims, reduction);
             const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(froxel) + glm::vec3(frame.jitter), frame);

@@ -40,8 +40,9 @@ struct ShadowVolume {
     std::vector<glm::vec4> transmittance;  // rgb transmittance, a unused
 };
 
+// layers: per light, 0 = skip its layer (core/light_reach.h; nobody reads it); null: every one.
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
-                                 int threads);
+                                 int threads, const std::vector<int>* layers = nullptr);
 
 // The light pass's transmittance toward light `light` for the froxel whose shd::shadowLookup is k
 // (sample point p): the volume's trilinear blend where its 8 cells agree, the exact closed form

@@ -10,6 +10,7 @@
 
 #include "compile.h"
 #include "scene.h"
+#include "local_shadow.h"
 #include "sun_shadow.h"
 
 namespace brume {
@@ -68,6 +69,7 @@ struct CpuHistory {
     TemporalState state;
     std::array<HistoryVolume, 2> pair;
     SunShadowCache sunShadow;
+    LocalShadowCache localShadows;  // point and spot light maps, likewise kept
 };
 
 }  // namespace brume

@@ -47,6 +47,9 @@ struct FrameResources {
     Buffer shadowTransmittance;  // vec4[], at least one entry
     // Sun shadow map (shaders/shared/sun_shadow.h), ray cast on the host: SunShadowFit + float[N * N].
     Buffer sunShadowMap;
+    // Point and spot light shadow maps (shaders/shared/local_shadow.h), ray cast on the host:
+    // float[slots * 6 * N * N], 1.5 MiB per mapped light at high (N = 256).
+    Buffer localShadowMaps;
 
     // Every vdb volume's NanoVDB grid back to back (compileScene's order and offsets), sparse as
     // imported: GPU memory is the NanoVDB size. Re-uploaded only when the set of grids changes.

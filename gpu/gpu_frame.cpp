@@ -135,7 +135,8 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 }
 
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
-                                         size_t vertexBytes, int shadowReduction, size_t sunShadowBytes) {
+                                         size_t vertexBytes, int shadowReduction, size_t sunShadowBytes,
+                                         size_t localShadowBytes) {
     bool dirty = false;
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     BRUME_TRY(ensureBuffer(res.frame, sizeof(shd::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Memory::Upload,
@@ -162,11 +163,15 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            "shadow transmittance", dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
     BRUME_TRY(chooseVoxelizeVariant(cs));
-    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(clusterCount(dims));
+    // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
+    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(clusterCount(dims)) + 2 +
+                               2 * cs.lights.size();
     BRUME_TRY(ensureBuffer(res.lightClusters, clusterInts * sizeof(int), storage, Memory::Upload, "light clusters",
                            dirty));
     BRUME_TRY(ensureBuffer(res.sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), storage,
                            Memory::Upload, "sun shadow map", dirty));
+    BRUME_TRY(ensureBuffer(res.localShadowMaps, std::max<size_t>(localShadowBytes, 4), storage, Memory::Upload,
+                           "local shadow maps", dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }

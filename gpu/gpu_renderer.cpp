@@ -6,6 +6,7 @@
 
 #include "core/clusters.h"
 #include "core/compile.h"
+#include "core/light_reach.h"
 #include "core/shadows.h"
 #include "core/sun_shadow.h"
 #include "geometry_mesh.h"
@@ -130,7 +131,10 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
                                                 request.threads);
     const size_t sunBytes = sun.depth.size() * sizeof(float);
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes));
+    const LocalShadowMaps& local = s_->localShadows.get(cs, scene.geometry, frame.shadows.w, request.threads);
+    const size_t localBytes = local.depth.size() * sizeof(float);
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes,
+                          localBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
@@ -138,10 +142,16 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r.lightClusters.mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
+    const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling), cs.lights.size());
+    std::memcpy(static_cast<int*>(r.lightClusters.mapped) + clusters.records.size(), reach.data(),
+                reach.size() * sizeof(int));
+    // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
+    r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadows.y).z * reach[1 + cs.lights.size()];
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
     std::memcpy(r.sunShadowMap.mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
         std::memcpy(static_cast<char*>(r.sunShadowMap.mapped) + sizeof(sun.fit), sun.depth.data(), sunBytes);
+    if (localBytes > 0) std::memcpy(r.localShadowMaps.mapped, local.depth.data(), localBytes);
 
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
     // decides, as for the CPU renderer); only the last is read back.

@@ -13,7 +13,7 @@ namespace brume::gpu {
 
 // Geometry: planes, boxes and spheres rasterized with a depth test and shaded like
 // core/geometry.cpp shadeSurface with the fog's shadow and the sun shadow map, not exact occlusion.
-// in: frame, lights, vertices, shadowTransmittance, sunShadowMap. out: sceneColor (sky = ambient), sceneDepth (sky = camera far).
+// in: frame, lights, lightClusters (light reach), vertices, shadowTransmittance, sunShadowMap, localShadowMaps. out: sceneColor (sky = ambient), sceneDepth (sky = camera far).
 class GeometryPass {
 public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
@@ -36,12 +36,12 @@ Result<ComputePass> createVoxelizeVdbPass(const Device& device, VkPipelineLayout
 Result<ComputePass> createVoxelizeTexturePass(const Device& device, VkPipelineLayout layout, bool vdb);
 void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
-// Shadow volume. in: frame, volumes, lights. out: shadowTransmittance (each shadowing light's fog
+// Shadow volume. in: frame, volumes, lights, lightClusters (light reach). out: shadowTransmittance (each shadowing light's fog
 // transmittance on the reduced grid of shaders/shared/shadow_volume.h).
 Result<ComputePass> createShadowVolumePass(const Device& device, VkPipelineLayout layout);
 void recordShadowVolume(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 extent);
 
-// Light. in: frame, lights, media*, shadowTransmittance, sunShadowMap. out: source, counters.
+// Light. in: frame, lights, media*, shadowTransmittance, sunShadowMap, localShadowMaps. out: source, counters.
 Result<ComputePass> createLightPass(const Device& device, VkPipelineLayout layout);
 void recordLight(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
@@ -55,7 +55,7 @@ void recordTemporal(VkCommandBuffer cmd, const ComputePass& pass, const Descript
 Result<ComputePass> createIntegratePass(const Device& device, VkPipelineLayout layout);
 void recordIntegrate(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 dims);
 
-// Composite. in: frame, integrated*, sceneColor, sceneDepth. out: output.
+// Composite. in: frame, lights, lightClusters (light reach), integrated*, sceneColor, sceneDepth. out: output.
 Result<ComputePass> createCompositePass(const Device& device, VkPipelineLayout layout);
 void recordComposite(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec2 size);
 

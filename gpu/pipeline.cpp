@@ -15,7 +15,7 @@ VkDescriptorType bindingType(int binding) {
     if (binding == shd::BINDING_FRAME || binding == shd::BINDING_PREVIOUS_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     if (binding <= shd::BINDING_COUNTERS || binding == shd::BINDING_SHADOW_TRANSMITTANCE ||
         binding == shd::BINDING_VDB_GRIDS || binding == shd::BINDING_LIGHT_CLUSTERS ||
-        binding == shd::BINDING_SUN_SHADOW_MAP)
+        binding == shd::BINDING_SUN_SHADOW_MAP || binding == shd::BINDING_LOCAL_SHADOW_MAPS)
         return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
@@ -56,8 +56,8 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
 
     const std::array<VkDescriptorPoolSize, 3> sizes{{
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 9)},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 10)},
     }};
     VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = 1;
@@ -96,18 +96,18 @@ VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, const VkD
 
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
     // Bindings 0..3, BINDING_PREVIOUS_FRAME, BINDING_SHADOW_TRANSMITTANCE, BINDING_VDB_GRIDS,
-    // BINDING_LIGHT_CLUSTERS and BINDING_SUN_SHADOW_MAP are buffers, 4..BINDING_OUTPUT images; the
+    // BINDING_LIGHT_CLUSTERS, BINDING_SUN_SHADOW_MAP and BINDING_LOCAL_SHADOW_MAPS are buffers, 4..BINDING_OUTPUT images; the
     // history pair is bound per frame by writeHistoryBindings.
-    const std::array<const Buffer*, 9> buffers{&r.frame,         &r.volumes,
-                                               &r.lights,        &r.counters,
-                                               &r.previousFrame, &r.shadowTransmittance,
-                                               &r.vdbGrids,      &r.lightClusters,
-                                               &r.sunShadowMap};
-    const std::array<int, 9> bufferBindings{shd::BINDING_FRAME,          shd::BINDING_VOLUMES,
-                                            shd::BINDING_LIGHTS,         shd::BINDING_COUNTERS,
-                                            shd::BINDING_PREVIOUS_FRAME, shd::BINDING_SHADOW_TRANSMITTANCE,
-                                            shd::BINDING_VDB_GRIDS,      shd::BINDING_LIGHT_CLUSTERS,
-                                            shd::BINDING_SUN_SHADOW_MAP};
+    const std::array<const Buffer*, 10> buffers{&r.frame,         &r.volumes,
+                                                &r.lights,        &r.counters,
+                                                &r.previousFrame, &r.shadowTransmittance,
+                                                &r.vdbGrids,      &r.lightClusters,
+                                                &r.sunShadowMap,  &r.localShadowMaps};
+    const std::array<int, 10> bufferBindings{shd::BINDING_FRAME,          shd::BINDING_VOLUMES,
+                                             shd::BINDING_LIGHTS,         shd::BINDING_COUNTERS,
+                                             shd::BINDING_PREVIOUS_FRAME, shd::BINDING_SHADOW_TRANSMITTANCE,
+                                             shd::BINDING_VDB_GRIDS,      shd::BINDING_LIGHT_CLUSTERS,
+                                             shd::BINDING_SUN_SHADOW_MAP, shd::BINDING_LOCAL_SHADOW_MAPS};
     const std::array<const GpuImage*, shd::BINDING_OUTPUT - 3> images{
         &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
         &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};

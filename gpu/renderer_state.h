@@ -5,6 +5,7 @@
 #include <array>
 
 #include "core/compile.h"
+#include "core/local_shadow.h"
 #include "core/sun_shadow.h"
 #include "core/temporal.h"
 #include "frame_resources.h"
@@ -37,6 +38,7 @@ struct GpuRenderer::State {
     ComputePass debugView;
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
+    LocalShadowCache localShadows;  // the host-built point/spot maps, each kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
     FrameResources res;
@@ -53,7 +55,7 @@ struct GpuRenderer::State {
     Result<void> chooseVoxelizeVariant(const CompiledScene& cs);
     const ComputePass& voxelizeVariant() const;
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
-                         int shadowReduction, size_t sunShadowBytes);
+                         int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                      int historyWriteIndex);
     void recordReadback(bool readBackVolumes);

@@ -44,7 +44,11 @@ Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
             float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
             if (len <= 0.0f) continue;
             vec3 light = frame.ambient.rgb;
-            for (int j = 0; j < frame.counts.w; ++j) {
+            // The surface lights (core/light_reach.h) hold every directional light that shines, in
+            // increasing order: the CPU's sum over all lights, without looping over the local ones.
+            int reach = lightReachOffset(frame.froxelDims.xyz);
+            for (int k = 0; k < lightClusters[reach]; ++k) {
+                int j = lightClusters[reach + 1 + k];
                 if (lights[j].kind.x != LIGHT_DIRECTIONAL) continue;
                 vec3 toLight = -lights[j].direction.xyz;
                 light += distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w) *

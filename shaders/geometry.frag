@@ -5,6 +5,7 @@
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
+#include "local_shadow.glsl"
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -24,12 +25,16 @@ void main() {
     vec3 m = abs(worldPos);
     vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
     SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadows.y);
-    for (int i = 0; i < frame.counts.w; ++i) {
+    // Only the lights that can reach the view frustum (core/light_reach.h), in increasing order.
+    int reach = lightReachOffset(frame.froxelDims.xyz);
+    int count = lightClusters[reach];
+    for (int k = 0; k < count; ++k) {
+        int i = lightClusters[reach + 1 + k];
         LightSample ls = evalLight(lights[i], worldPos);
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
         radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *
-                    sunShadowVisibility(i, origin);
+                    sunShadowVisibility(i, origin) * localShadowVisibility(i, origin);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

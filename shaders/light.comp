@@ -8,6 +8,7 @@
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
+#include "local_shadow.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
@@ -37,7 +38,8 @@ void main() {
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
-        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance) * sunShadowVisibility(i, p);
+        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance) * sunShadowVisibility(i, p) *
+                     localShadowVisibility(i, p);
     }
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));

@@ -14,6 +14,7 @@ layout(std430, set = 0, binding = BINDING_SUN_SHADOW_MAP) readonly buffer SunSha
     SunShadowFit sunShadowFit;
     float sunShadowDepth[];
 };
+layout(std430, set = 0, binding = BINDING_LOCAL_SHADOW_MAPS) readonly buffer LocalShadowBlock { float localShadowDepth[]; };
 
 #ifdef BRUME_FROXEL_IMAGES
 layout(set = 0, binding = BINDING_MEDIA_SCATTERING, rgba32f) uniform image3D mediaScatteringG;

@@ -1,6 +1,6 @@
 // Shadow volume pass: each shadowing light's fog transmittance at the reduced grid's cells
-// (shared/shadow_volume.h; core: computeShadowVolume). Lights are stacked along z; layers of lights
-// that are not fog-shadowed hold 1 and are never read.
+// (shared/shadow_volume.h; core: computeShadowVolume). Lights' layers are stacked along z in memory;
+// the dispatch covers the layers the light reach lists, one after the other; the others are never read.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
@@ -11,9 +11,13 @@ layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadows.y);
-    int light = id.z / cells.z;
-    if (id.x >= cells.x || id.y >= cells.y || light >= frame.counts.w) return;
-    ivec3 cell = ivec3(id.xy, id.z - light * cells.z);
+    // Only the layers some reader needs, listed by the light reach (core/light_reach.h); the others
+    // are never read.
+    int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;
+    int k = id.z / cells.z;
+    if (id.x >= cells.x || id.y >= cells.y || k >= lightClusters[layers]) return;
+    int light = lightClusters[layers + 1 + k];
+    ivec3 cell = ivec3(id.xy, id.z - k * cells.z);
     ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadows.y);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
     LightSample ls = evalLight(lights[light], p);

@@ -262,6 +262,29 @@ TEST_F(GpuTest, SunShadowMapShaftMatchesCpu) {
     expectMatchesCpu(s, "sun shadow map, low", Quality::Low);
 }
 
+// Point and spot shadow maps (shared/local_shadow.h): a point light between the ground's cube and
+// ball (cube map, all six faces see geometry or fog) and a spot shining down past a slab onto them
+// (perspective map), over height fog: froxels and surfaces in and out of both shadows, at high's
+// and low's face sizes.
+TEST_F(GpuTest, PointAndSpotShadowMapsMatchCpu) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Exponential)};
+    s.geometry = ground();
+    Geometry slab;
+    slab.type = GeometryType::Box;
+    slab.transform.translation = {1.0f, 2.2f, 0.0f};
+    slab.transform.scale = {1.5f, 0.2f, 2.0f};
+    s.geometry.push_back(slab);
+    Light point = pointLight({-0.2f, 0.9f, -0.6f}, {1.0f, 0.8f, 0.6f});
+    point.intensity = 6.0f;
+    point.shadows = true;
+    Light spot = spotLight();
+    spot.shadows = true;
+    s.lights = {point, spot};
+    expectMatchesCpu(s, "point/spot shadow maps, high", Quality::High);
+    expectMatchesCpu(s, "point/spot shadow maps, low", Quality::Low);
+}
+
 // Volumetric shadows (shared/shadows.h): a dense faded box over height fog and the ground, a sun and
 // a point light inside the haze. At high both renderers dim the point light by the fog on its way
 // too; at low only the sun; either way they must agree, froxels and surfaces alike.

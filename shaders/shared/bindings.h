@@ -37,7 +37,9 @@ BRUME_CONST int BINDING_LIGHT_CLUSTERS = 20;  // storage int[]: light lists per 
                                                // from core/clusters.cpp each frame
 BRUME_CONST int BINDING_SUN_SHADOW_MAP = 21;  // storage: SunShadowFit, then float depth[N * N]
                                                // (sun_shadow.h); built on the host (core/sun_shadow.h)
-BRUME_CONST int BINDING_COUNT = 22;
+BRUME_CONST int BINDING_LOCAL_SHADOW_MAPS = 22;  // storage float[]: every point/spot shadow map face
+                                                  // (local_shadow.h); built on the host (core/local_shadow.h)
+BRUME_CONST int BINDING_COUNT = 23;
 
 // Written by the light pass with atomics; 16 bytes in std430.
 struct FroxelCounters {

@@ -15,6 +15,7 @@
 #include "shadow_volume.h"
 #include "clusters.h"
 #include "sun_shadow.h"
+#include "local_shadow.h"
 #include "tonemap.h"
 #include "debug_view.h"
 #endif

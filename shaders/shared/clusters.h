@@ -31,6 +31,15 @@ BRUME_FUNC int clusterRecord(ivec3 froxel, ivec3 froxelDims) {
     return ((c.z * d.y + c.y) * d.x + c.x) * CLUSTER_STRIDE;
 }
 
+// After the cluster records, the frame's light reach (core/light_reach.h), 2 + 2 x lights ints:
+//   [0] n surface lights, [1..n] their indices ascending (the geometry and composite passes' loops),
+//   [1 + lights] m, [2 + lights..] the m lights whose transmittance layer is computed, ascending
+//   (the shadow volume pass dispatches m layers).
+BRUME_FUNC int lightReachOffset(ivec3 froxelDims) {
+    ivec3 d = clusterDims(froxelDims);
+    return d.x * d.y * d.z * CLUSTER_STRIDE;
+}
+
 BRUME_NAMESPACE_END
 
 #endif

@@ -56,7 +56,8 @@ struct LightData {
     vec4 intensity;       // rgb: color * intensity (W/m^2 for directional, W/sr for point and spot);
                           // a: fog_scale
     vec4 spot;            // x: cos(outer angle); y: cos(inner angle)
-    ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1)
+    ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1); z: point/spot: local shadow map slot + 1,
+                          // 0 = none (local_shadow.h)
 };
 
 // Per-frame constants shared by every pass. 384 bytes.
@@ -76,7 +77,8 @@ struct FrameUniforms {
     ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
                           // is always on; shadows.h); y: transmittance volume reduction r >= 1
                           // (shadow_volume.h); z: index + 1 of the light the sun shadow
-                          // map serves, 0 = none (sun_shadow.h); w unused
+                          // map serves, 0 = none (sun_shadow.h); w: texels per side of each
+                          // point/spot shadow map face, 0 = none (local_shadow.h)
 };
 
 BRUME_NAMESPACE_END

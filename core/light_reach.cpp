@@ -1,0 +1,70 @@
+#include "light_reach.h"
+
+#include <cmath>
+
+#include "clusters.h"
+
+namespace brume {
+namespace {
+
+// Relative slack on distances: fragment positions are interpolated in float and may lie a little
+// outside the frustum; a light grazing it must not be culled by rounding.
+constexpr float kSlack = 1.0e-3f;
+
+// Lights some cluster lists (every light that can reach one, when a cluster is over-full and
+// loops over all of them).
+std::vector<char> listedInClusters(const LightClusters& clusters, size_t lightCount) {
+    std::vector<char> listed(lightCount, 0);
+    for (size_t r = 0; r < clusters.records.size(); r += shd::CLUSTER_STRIDE) {
+        const int n = clusters.records[r];
+        if (n == shd::CLUSTER_ALL_LIGHTS) return std::vector<char>(lightCount, 1);
+        for (int k = 0; k < n; ++k) listed[static_cast<size_t>(clusters.records[r + 1 + static_cast<size_t>(k)])] = 1;
+    }
+    return listed;
+}
+
+}  // namespace
+
+bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth) {
+    if (glm::vec3(l.intensity) == glm::vec3(0.0f)) return false;
+    const float range = l.positionRange.w;
+    if (l.kind.x == shd::LIGHT_DIRECTIONAL || range <= 0.0f) return true;
+    const glm::vec3 q = glm::vec3(frame.viewFromWorld * glm::vec4(glm::vec3(l.positionRange), 1.0f));
+    const float depth = -q.z;
+    const float reach = range + kSlack * (range + glm::length(q) + farDepth);
+    const float tx = frame.projection.x, ty = frame.projection.y;
+    // Signed distances outside the near, far and four side planes (view space, camera at 0).
+    if (nearDepth - depth > reach || depth - farDepth > reach) return false;
+    if ((std::abs(q.x) - tx * depth) / std::sqrt(1.0f + tx * tx) > reach) return false;
+    if ((std::abs(q.y) - ty * depth) / std::sqrt(1.0f + ty * ty) > reach) return false;
+    return true;
+}
+
+LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
+                           bool culling) {
+    LightReach out;
+    out.shadowVolume.assign(cs.lights.size(), 0);
+    const std::vector<char> listed = listedInClusters(clusters, cs.lights.size());
+    for (size_t i = 0; i < cs.lights.size(); ++i) {
+        const shd::LightData& l = cs.lights[i];
+        const bool surface = !culling || lightMayReachFrustum(l, frame, frame.projection.z, frame.projection.w);
+        if (surface) out.surfaceLights.push_back(static_cast<int>(i));
+        if (!shd::fogShadowsLight(l, frame.shadows.x)) continue;
+        // Surfaces read the volume inside the froxel grid only: from the camera to the froxel far.
+        const bool read = listed[i] || (surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
+        out.shadowVolume[i] = !culling || read ? 1 : 0;
+    }
+    return out;
+}
+
+std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount) {
+    std::vector<int> record(2 + 2 * lightCount, 0);
+    record[0] = static_cast<int>(reach.surfaceLights.size());
+    for (size_t k = 0; k < reach.surfaceLights.size(); ++k) record[1 + k] = reach.surfaceLights[k];
+    int* layers = &record[1 + lightCount];
+    for (size_t i = 0; i < lightCount; ++i)
+        if (reach.shadowVolume[i] != 0) layers[1 + layers[0]++] = static_cast<int>(i);
+    return record;
+}
+
+}  // namespace brume

@@ -1,0 +1,40 @@
+// Which lights can touch anything a frame shades (docs/gpu.md, "Light reach"): the per-frame
+// complement of the light clusters (core/clusters.h) for the passes the clusters do not cover.
+//   surface lights   lights whose range can reach the camera frustum (near to far), fog_scale
+//                    ignored: the geometry pass loops over these only;
+//   shadow volume    per light, whether its layer of the transmittance volume is computed: it is
+//                    fog-shadowed (shd::fogShadowsLight) and a reader needs it: the light pass (the
+//                    light is in a cluster's list) or the surfaces (its range reaches the view
+//                    frustum up to the froxel far, where surfaces read the volume).
+// Both are conservative: a light left out contributes exactly 0 wherever it is left out, so the
+// image is the unculled one, bit for bit on the CPU. Uploaded after the cluster records
+// (shd::lightReachOffset).
+#pragma once
+
+#include <vector>
+
+#include "clusters.h"
+#include "compile.h"
+
+namespace brume {
+
+struct LightReach {
+    std::vector<int> surfaceLights;  // light indices, ascending
+    std::vector<int> shadowVolume;   // per light: 1 = its transmittance layer is computed
+};
+
+// The reach for `frame`, whose light pass reads `clusters`. culling = false: every light is a surface
+// light and every fog-shadowed light gets its layer.
+LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
+                           bool culling = true);
+
+// Whether light l's range window can reach a point of the view frustum between view depths
+// nearDepth and farDepth [m] (fog_scale is not looked at).
+bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth);
+
+// The ints the GPU reads after the cluster records (shared/clusters.h lightReachOffset): the surface
+// lights and the lights with a shadow-volume layer, each as a count and its indices padded to the
+// light count; 2 + 2 x lights ints.
+std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount);
+
+}  // namespace brume

@@ -1,0 +1,12 @@
+// Visibility of light i at p through its point/spot shadow map (core: localShadowVisibility): 1 for
+// unmapped lights and outside a spot's face.
+float localShadowVisibility(int i, vec3 p) {
+    int n = frame.shadows.w;
+    if (!localShadowMapped(lights[i], n)) return 1.0f;
+    LocalShadowLookup k = localShadowLookup(lights[i], n, p);
+    if (!k.inside) return 1.0f;
+    return localShadowPcf(k, localShadowDepth[localShadowIndex(k, n, ivec2(0, 0))],
+                          localShadowDepth[localShadowIndex(k, n, ivec2(1, 0))],
+                          localShadowDepth[localShadowIndex(k, n, ivec2(0, 1))],
+                          localShadowDepth[localShadowIndex(k, n, ivec2(1, 1))]);
+}

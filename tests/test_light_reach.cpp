@@ -1,0 +1,133 @@
+// The frame's light reach (core/light_reach.h): the surface-light list holds every light that can
+// light a point of the view frustum and leaves out those that cannot; the transmittance volume's
+// layers are computed for the lights that touch something only; neither changes the image.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/light_reach.h"
+#include "core/render.h"
+#include "core/shadows.h"
+
+using namespace brume;
+using glm::vec3;
+
+namespace {
+
+Light point(vec3 p, float range) {
+    Light l = makeLight(LightType::Point);
+    l.position = p;
+    l.range = range;
+    l.intensity = 20.0f;
+    return l;
+}
+
+// Camera at z = 6 looking toward -z over a floor in height fog; lights in view, beside it, behind
+// it and past its far plane, one for surfaces only (fog_scale 0) and one dark.
+Scene reachScene() {
+    Scene s;
+    s.camera.position = {0.0f, 1.5f, 6.0f};
+    s.camera.target = {0.0f, 0.5f, 0.0f};
+    s.camera.far = 40.0f;
+    s.froxels.tile_px = 8;
+    s.froxels.slices = 48;
+    s.froxels.far = 20.0f;
+    Volume fog;
+    fog.type = VolumeType::Height;
+    fog.base_height = 0.5f;
+    fog.falloff = 0.5f;
+    fog.medium.scattering = {0.2f, 0.2f, 0.25f};
+    s.volumes = {fog};
+    Geometry floor;
+    floor.type = GeometryType::Plane;
+    floor.albedo = vec3(0.5f);
+    s.geometry = {floor};
+    Light sun = makeLight(LightType::Directional);
+    sun.direction = glm::normalize(vec3(0.3f, -1.0f, -0.4f));
+    s.lights = {sun,
+                point({-2.0f, 0.5f, 0.0f}, 1.5f),
+                point({0.0f, 1.0f, 14.0f}, 2.0f),    // 2: behind the camera
+                point({60.0f, 1.0f, -5.0f}, 4.0f),   // 3: far to the side
+                point({0.0f, 1.0f, -30.0f}, 3.0f),   // 4: in view past the froxel far: surfaces only
+                point({0.0f, 1.0f, -60.0f}, 4.0f),   // 5: past the camera far
+                point({1.0f, 0.5f, -2.0f}, 3.0f),    // 6: fog_scale 0
+                point({-1.0f, 0.5f, -2.0f}, 3.0f),   // 7: dark
+                point({0.0f, 1.5f, 7.2f}, 2.0f)};    // 8: behind the camera, its range poking in
+    s.lights[6].fog_scale = 0.0f;
+    s.lights[7].intensity = 0.0f;
+    return s;
+}
+
+RenderRequest smallRequest() {
+    RenderRequest r;
+    r.width = 160;
+    r.height = 90;
+    r.threads = 2;
+    return r;
+}
+
+shd::FrameUniforms frameOf(const Scene& s, const CompiledScene& cs) {
+    shd::FrameUniforms f = makeFrameUniforms(s, cs, 160, 90, resolveFroxelSettings(s, Quality::High));
+    applyShadowSettings(f, smallRequest());
+    return f;
+}
+
+bool contains(const std::vector<int>& v, int i) { return std::find(v.begin(), v.end(), i) != v.end(); }
+
+}  // namespace
+
+// Exact where it matters: at points spread through the whole view frustum (pixels x view depths from
+// the camera near to far), every light that lights one of them is a surface light. Tight: the
+// lights behind, beside and past the far plane, and the dark one, are not; the one behind the camera
+// whose range pokes into the frustum is.
+TEST(LightReach, SurfaceLightsAreEveryLightThatLightsTheFrustum) {
+    const Scene s = reachScene();
+    const CompiledScene cs = compileScene(s);
+    const shd::FrameUniforms frame = frameOf(s, cs);
+    const LightReach reach = buildLightReach(cs, frame, buildLightClusters(cs, frame));
+    for (int absent : {2, 3, 5, 7}) EXPECT_FALSE(contains(reach.surfaceLights, absent)) << "light " << absent;
+    for (int present : {0, 1, 4, 6, 8}) EXPECT_TRUE(contains(reach.surfaceLights, present)) << "light " << present;
+    int lit = 0;
+    for (int py = 0; py <= 90; py += 3)
+        for (int px = 0; px <= 160; px += 4)
+            for (int d = 0; d <= 64; ++d) {
+                const float near = frame.projection.z, far = frame.projection.w;
+                const float depth = near * std::pow(far / near, static_cast<float>(d) / 64.0f);
+                const vec3 ray = shd::viewRayFromPixel(glm::vec2(px, py), frame);  // z = -1
+                const vec3 p = vec3(frame.worldFromView * glm::vec4(ray * depth, 1.0f));
+                for (size_t i = 0; i < cs.lights.size(); ++i) {
+                    if (shd::evalLight(cs.lights[i], p).irradiance == vec3(0.0f)) continue;
+                    ++lit;
+                    EXPECT_TRUE(contains(reach.surfaceLights, static_cast<int>(i)))
+                        << "light " << i << " lights " << p.x << "," << p.y << "," << p.z;
+                }
+            }
+    EXPECT_GT(lit, 1000);
+}
+
+// Layers of the transmittance volume: the sun's, the fog lights' in reach and the surface-only light
+// in view inside the froxel grid; not the lights out of reach, the dark one, nor the one that only
+// lights surfaces past the froxel far.
+TEST(LightReach, ShadowVolumeLayersOnlyForLightsThatTouchSomething) {
+    const Scene s = reachScene();
+    const CompiledScene cs = compileScene(s);
+    const shd::FrameUniforms frame = frameOf(s, cs);
+    const LightReach reach = buildLightReach(cs, frame, buildLightClusters(cs, frame));
+    EXPECT_EQ(reach.shadowVolume, (std::vector<int>{1, 1, 0, 0, 0, 0, 1, 0, 1}));
+    const LightReach all = buildLightReach(cs, frame, buildLightClusters(cs, frame, false), /*culling=*/false);
+    EXPECT_EQ(all.shadowVolume, std::vector<int>(cs.lights.size(), 1));
+    EXPECT_EQ(all.surfaceLights.size(), cs.lights.size());
+}
+
+// Skipped layers are never read: the CPU image and source are the unculled ones, bit for bit, with
+// the fog's shadow on the floor and in the fog (high: point lights too).
+TEST(LightReach, CulledImageEqualsUnculled) {
+    const Scene s = reachScene();
+    RenderRequest r = smallRequest();
+    const FroxelResult culled = renderFroxelCpu(s, r);
+    r.lightCulling = false;
+    const FroxelResult all = renderFroxelCpu(s, r);
+    EXPECT_EQ(culled.volumes.source, all.volumes.source);
+    EXPECT_EQ(culled.image.pixels, all.image.pixels);
+}
