@@ -18,6 +18,7 @@
 #include "render.h"
 #include "shadows.h"
 #include "sun_shadow.h"
+#include "vdb_shadow.h"
 
 namespace brume {
 namespace {
@@ -186,6 +187,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
     applyShadowSettings(frame, request);
     applySunShadowSettings(frame, cs);
+    applyVdbShadowSettings(frame, cs, request);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 

@@ -8,6 +8,7 @@
 #include "core/compile.h"
 #include "core/shadows.h"
 #include "core/sun_shadow.h"
+#include "core/vdb_shadow.h"
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
@@ -54,6 +55,7 @@ Result<void> GpuRenderer::State::createPasses() {
     geometry = std::move(g.value());
     for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&voxelizeVdb, &createVoxelizeVdbPass},
                                 std::pair{&shadowVolume, &createShadowVolumePass},
+                                std::pair{&shadowVolumeVdb, &createShadowVolumeVdbPass},
                                 std::pair{&light, &createLightPass}, std::pair{&temporal, &createTemporalPass},
                                 std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass}}) {
         Result<ComputePass> p = create(*device, layout);
@@ -120,6 +122,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
     applyShadowSettings(frame, request);
     applySunShadowSettings(frame, cs);
+    applyVdbShadowSettings(frame, cs, request);
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
@@ -155,6 +158,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         frame.jitter.w = t.useHistory ? t.historyWeight : 0.0f;
         applyShadowSettings(frame, request);  // as renderFroxelCpu
         applySunShadowSettings(frame, cs);
+        applyVdbShadowSettings(frame, cs, request);
         std::memcpy(r.frame.mapped, &frame, sizeof(frame));
         std::memcpy(r.previousFrame.mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);

@@ -28,7 +28,7 @@ struct GpuRenderer::State {
     FenceOwner fence;
     DescriptorBindings bindings;
     GeometryPass geometry;
-    ComputePass voxelize, voxelizeVdb, shadowVolume, light, integrate, composite;
+    ComputePass voxelize, voxelizeVdb, shadowVolume, shadowVolumeVdb, light, integrate, composite;
     ComputePass temporal;
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
