@@ -179,7 +179,8 @@ FroxelVolumes allocateVolumes(const shd::FrameUniforms& frame) {
 FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& request, CpuHistory& history) {
     FroxelResult result;
     if (request.width < 1 || request.height < 1) return result;
-    const CompiledScene cs = compileScene(scene);
+    CompiledScene cs = compileScene(scene);
+    applyVdbCullingSettings(cs, request);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     const uint64_t sceneKey = temporalSceneKey(cs, scene, froxelGridDims(request.width, request.height, fs));
     const TemporalFrame t = beginTemporalFrame(history.state, scene, sceneKey, request.history);

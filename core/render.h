@@ -28,6 +28,7 @@ struct RenderRequest {
     int shadowReduction = 0;  // fog transmittance volume reduction (core/shadows.h); 0 = the quality's
     bool lightCulling = true;  // froxel renderers: light pass loops over its cluster's lights (core/clusters.h)
     bool vdbShadows = true;    // froxel renderers: vdb volumes in the fog shadows (core/vdb_shadow.h)
+    bool vdbCulling = true;    // froxel renderers: skip grid walks in empty occupancy cells (core/vdb_shadow.h)
     ProgressFn progress;   // optional
 };
 

@@ -12,6 +12,12 @@ void applyVdbShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs, 
     frame.shadows.w = anyGrid && request.vdbShadows ? vdbShadowSamplesPerVoxel(request.quality) : 0;
 }
 
+void applyVdbCullingSettings(CompiledScene& cs, const RenderRequest& request) {
+    if (request.vdbCulling) return;
+    for (shd::VolumeData& v : cs.volumes)
+        if (v.kind.x == shd::VOLUME_VDB) v.kind.w = 0;
+}
+
 glm::vec3 vdbFogOpticalDepth(const CompiledScene& cs, const shd::FrameUniforms& frame, const shd::LightData& l,
                              glm::vec3 p, glm::vec3 toLight, float distance) {
     if (frame.shadows.w <= 0 || !shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(0.0f);

@@ -20,6 +20,11 @@ int vdbShadowSamplesPerVoxel(Quality q);
 // applyShadowSettings, in both froxel renderers.
 void applyVdbShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs, const RenderRequest& request);
 
+// With request.vdbCulling off, clears every vdb volume's occupancy offset (VolumeData.kind.w), so
+// that both froxel renderers walk the tree wherever they sample (to measure the culling; the image is
+// the same either way). Call right after compileScene.
+void applyVdbCullingSettings(CompiledScene& cs, const RenderRequest& request);
+
 // Optical depth of the vdb volumes alone from p along unit toLight over `distance`, marched at
 // frame.shadows.w samples per voxel (what the transmittance volume's vdb layer holds); 0 when that is
 // 0 or shd::fogShadowsLight skips the light.

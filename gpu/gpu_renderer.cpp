@@ -117,7 +117,8 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     if (request.width < 1 || request.height < 1)
         return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
                      std::to_string(request.height) + "."};
-    const CompiledScene cs = compileScene(scene);
+    CompiledScene cs = compileScene(scene);
+    applyVdbCullingSettings(cs, request);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
     applyShadowSettings(frame, request);

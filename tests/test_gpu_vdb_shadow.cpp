@@ -152,4 +152,19 @@ TEST_F(GpuVdbShadow, GafferSmokeShadowsMatchCpu) {
     s.lights = {sun};
     s.volumes = {v};
     expectMatchesCpu(s, Quality::High, "gaffer_smoke.vdb, high");
+
+    // Occupancy culling (the voxelize pass and the shadow march skip empty cells) changes nothing.
+    RenderRequest request;
+    request.width = 160;
+    request.height = 90;
+    auto on = renderer->render(s, request, true);
+    request.vdbCulling = false;
+    auto off = renderer->render(s, request, true);
+    ASSERT_TRUE(on.ok() && off.ok());
+    const double err = relativeMeanAbsError(on.value().image, off.value().image);
+    const double mediaErr = relativeMeanAbsError(asImage(on.value().volumes.mediaExtinction),
+                                                 asImage(off.value().volumes.mediaExtinction));
+    std::printf("[gpu vdb culling] on vs off: image %.3g, sigma_t %.3g\n", err, mediaErr);
+    EXPECT_LT(err, 1e-6);
+    EXPECT_LT(mediaErr, 1e-6);
 }
