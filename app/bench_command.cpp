@@ -38,6 +38,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
     cmd->add_flag("--cpu", o.cpu, "Time the CPU froxel renderer instead of the GPU. Default: off.");
     cmd->add_flag("--no-light-culling", o.noLightCulling,
                   "Light pass loops over every light, not its cluster's list (to measure culling). Default: off.");
+    cmd->add_flag("--no-vdb-culling", o.noVdbCulling,
+                  "vdb volumes walk their grid wherever sampled, not only in occupied cells (to measure culling). Default: off.");
     cmd->add_option("--device", o.device, "GPU renderer: Vulkan device whose name contains this text. Default: automatic.");
     return cmd;
 }
@@ -58,6 +60,7 @@ CommandResult runBench(const BenchOptions& o) {
         return badInput("--quality '" + o.quality + "' is not one of " + std::string(settings::render_quality.choices) + ".");
     }
     request.lightCulling = !o.noLightCulling;
+    request.vdbCulling = !o.noVdbCulling;
     const RendererKind kind = o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu;
 
     // One session for every frame: what an editor pays per frame, not per start-up; the frames form

@@ -19,6 +19,7 @@ struct BenchOptions {
     int warmup = 3;
     bool cpu = false;
     bool noLightCulling = false;
+    bool noVdbCulling = false;
     std::string device;
     CLI::Option* widthOption = nullptr;
     CLI::Option* heightOption = nullptr;

@@ -39,6 +39,7 @@ static void compileVdb(const Volume& v, shd::VolumeData& d) {
         return;
     }
     d.kind.z = 1;
+    d.kind.w = static_cast<int>(v.density->occupancyOffset());
     const glm::mat4 worldFromIndex = v.transform.worldFromLocal() * v.density->gridFromIndex();
     d.localFromWorld = glm::inverse(worldFromIndex);
     const glm::vec3 lo = v.density->indexMin(), hi = v.density->indexMax();
@@ -167,7 +168,10 @@ float plainVolumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
     const shd::VolumeData& v = cs.volumes[i];
     if (v.kind.x != shd::VOLUME_VDB) return shd::analyticDensity(v, p, cs.cameraPosition);
     if (!cs.grids[i]) return 0.0f;
-    return v.params.x * cs.grids[i]->sampleIndex(shd::vdbIndexPos(v, p));
+    const glm::vec3 indexPos = shd::vdbIndexPos(v, p);
+    // Occupancy culling (kind.w: the cells' offset, 0 = off): the GPU's vdbDensity skips the same walks.
+    if (v.kind.w != 0 && !cs.grids[i]->occupied(indexPos)) return 0.0f;
+    return v.params.x * cs.grids[i]->sampleIndex(indexPos);
 }
 
 float densityTextureFactor(const CompiledScene& cs, size_t i, glm::vec3 p) {

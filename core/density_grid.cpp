@@ -9,7 +9,7 @@
 namespace brume {
 
 DensityGrid::DensityGrid(const void* bytes, size_t size)
-    : storage_((size + sizeof(Block) - 1) / sizeof(Block)), size_(storage_.size() * sizeof(Block)) {
+    : storage_((size + sizeof(Block) - 1) / sizeof(Block)), size_(storage_.size() * sizeof(Block)), nanoVdbSize_(size_) {
     std::memcpy(storage_.data(), bytes, size);
     const auto* grid = reinterpret_cast<const nanovdb::NanoGrid<float>*>(storage_.data());
     activeVoxels_ = grid->activeVoxelCount();
@@ -27,6 +27,50 @@ DensityGrid::DensityGrid(const void* bytes, size_t size)
         m[3][r] = static_cast<float>(map.mVecD[r]);
     }
     gridFromIndex_ = m;
+    buildOccupancy();
+}
+
+void DensityGrid::buildOccupancy() {
+    const auto* grid = reinterpret_cast<const nanovdb::NanoGrid<float>*>(storage_.data());
+    const auto& tree = grid->tree();
+    if (empty_ || tree.activeTileCount(1) + tree.activeTileCount(2) + tree.activeTileCount(3) > 0) return;
+    // Lower corners run from the active box's min - 1 to its max: the cells that hold them.
+    const nanovdb::CoordBBox box = grid->indexBBox();
+    const glm::ivec3 lo = glm::ivec3(box.min()[0] - 1, box.min()[1] - 1, box.min()[2] - 1) >> shd::VDB_OCCUPANCY_SHIFT;
+    const glm::ivec3 hi = glm::ivec3(box.max()[0], box.max()[1], box.max()[2]) >> shd::VDB_OCCUPANCY_SHIFT;
+    const glm::ivec3 dims = hi - lo + glm::ivec3(1);
+    std::vector<uint32_t> words(static_cast<size_t>(shd::VDB_OCCUPANCY_HEADER_WORDS) +
+                                static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * static_cast<size_t>(dims.z));
+    const int header[8] = {lo.x, lo.y, lo.z, 0, dims.x, dims.y, dims.z, 0};
+    std::memcpy(words.data(), header, sizeof(header));
+    // A leaf with a non-zero value (active or not) marks its own cell and the cells just below it,
+    // whose taps reach its first voxels.
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t n = 0; n < tree.nodeCount(0); ++n, ++leaf) {
+        bool nonZero = false;
+        for (uint32_t i = 0; i < 512 && !nonZero; ++i) nonZero = leaf->getValue(i) != 0.0f;
+        if (!nonZero) continue;
+        const glm::ivec3 cell = glm::ivec3(leaf->origin()[0], leaf->origin()[1], leaf->origin()[2]) >> shd::VDB_OCCUPANCY_SHIFT;
+        for (int d = 0; d < 8; ++d) {
+            const glm::ivec3 below = cell - glm::ivec3(d & 1, (d >> 1) & 1, d >> 2);
+            const int w = shd::vdbOccupancyWord(below << shd::VDB_OCCUPANCY_SHIFT, lo, dims);  // a voxel of it
+            if (w >= 0) words[static_cast<size_t>(shd::VDB_OCCUPANCY_HEADER_WORDS + w)] = 1u;
+        }
+    }
+    occupancyOffset_ = size_;
+    const size_t bytes = words.size() * sizeof(uint32_t);
+    storage_.resize(storage_.size() + (bytes + sizeof(Block) - 1) / sizeof(Block));
+    std::memcpy(reinterpret_cast<std::byte*>(storage_.data()) + occupancyOffset_, words.data(), bytes);
+    size_ = storage_.size() * sizeof(Block);
+}
+
+bool DensityGrid::occupied(glm::vec3 indexPos) const {
+    if (occupancyOffset_ == 0) return true;
+    const auto* words = reinterpret_cast<const uint32_t*>(reinterpret_cast<const std::byte*>(storage_.data()) + occupancyOffset_);
+    const auto* header = reinterpret_cast<const int32_t*>(words);
+    const int w = shd::vdbOccupancyWord(shd::vdbCell(indexPos).base, glm::ivec3(header[0], header[1], header[2]),
+                                        glm::ivec3(header[4], header[5], header[6]));
+    return w >= 0 && words[shd::VDB_OCCUPANCY_HEADER_WORDS + w] != 0u;
 }
 
 float DensityGrid::sampleIndex(glm::vec3 indexPos) const {

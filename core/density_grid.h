@@ -24,9 +24,17 @@ public:
     // finite and >= 0 (the importer sanitizes them).
     explicit DensityGrid(const void* bytes, size_t size);
 
-    // The raw NanoVDB buffer (what the GPU uploads); size is a multiple of 32 bytes.
+    // The raw NanoVDB buffer followed by the occupancy cells (what the GPU uploads); size is a
+    // multiple of 32 bytes.
     const void* data() const { return storage_.data(); }
     size_t size() const { return size_; }
+    size_t nanoVdbSize() const { return nanoVdbSize_; }
+    // Byte offset of the occupancy block in data() (shaders/shared/vdb.h), 0 = none (an empty grid,
+    // or one with active tiles, which the cells do not track).
+    size_t occupancyOffset() const { return occupancyOffset_; }
+    // False where the trilinear cell at indexPos is all zero (sampleIndex returns 0 there): the
+    // renderers skip the tree walk. True everywhere without an occupancy block.
+    bool occupied(glm::vec3 indexPos) const;
 
     // Trilinear value at an index-space position (0 outside the active voxels, the background).
     float sampleIndex(glm::vec3 indexPos) const;
@@ -50,8 +58,12 @@ private:
     struct alignas(32) Block {
         std::byte b[32];
     };
+    void buildOccupancy();
+
     std::vector<Block> storage_;
     size_t size_ = 0;
+    size_t nanoVdbSize_ = 0;
+    size_t occupancyOffset_ = 0;
     bool empty_ = true;
     glm::vec3 indexMin_{0.0f}, indexMax_{0.0f};
     glm::mat4 gridFromIndex_{1.0f};

@@ -21,6 +21,7 @@
 #include "render.h"
 #include "shadows.h"
 #include "sun_shadow.h"
+#include "vdb_shadow.h"
 
 namespace brume {
 namespace {
@@ -181,7 +182,8 @@ FroxelVolumes allocateVolumes(const shd::FrameUniforms& frame) {
 FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& request, CpuHistory& history) {
     FroxelResult result;
     if (request.width < 1 || request.height < 1) return result;
-    const CompiledScene cs = compileScene(scene);
+    CompiledScene cs = compileScene(scene);
+    applyVdbCullingSettings(cs, request);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     const uint64_t sceneKey = temporalSceneKey(cs, scene, froxelGridDims(request.width, request.height, fs));
     const TemporalFrame t = beginTemporalFrame(history.state, scene, sceneKey, request.history);
@@ -189,6 +191,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
     applyShadowSettings(frame, request);
     applySunShadowSettings(frame, cs);
+    applyVdbShadowSettings(frame, cs, request);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 

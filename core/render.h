@@ -31,6 +31,8 @@ struct RenderRequest {
     // volume (shaders/shared/debug_view.h, core/debug_view.h); debugSlice is clamped to the grid.
     int debugView = shd::DEBUG_VIEW_FINAL;
     int debugSlice = 0;
+    bool vdbShadows = true;    // froxel renderers: vdb volumes in the fog shadows (core/vdb_shadow.h)
+    bool vdbCulling = true;    // froxel renderers: skip grid walks in empty occupancy cells (core/vdb_shadow.h)
     ProgressFn progress;   // optional
 };
 

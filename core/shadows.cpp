@@ -4,6 +4,7 @@
 
 #include "local_shadow.h"
 #include "parallel.h"
+#include "vdb_shadow.h"
 
 namespace brume {
 
@@ -41,6 +42,13 @@ shd::ShadowBlend blendShadowCells(const ShadowVolume& sv, int light, const shd::
                             at(0, 1, 1), at(1, 1, 1), k.weights);
 }
 
+// Light `light`'s vdb transmittance at k (fog_shadow.glsl vdbShadowBlend): never evaluated exactly
+// outside the shadow volume, so it multiplies whichever analytic transmittance the caller took.
+glm::vec3 vdbLayerBlend(const ShadowVolume& sv, const shd::FrameUniforms& frame, int light, const shd::ShadowLookup& k) {
+    if (frame.vdb.x <= 0) return glm::vec3(1.0f);
+    return shd::vdbShadowTransmittance(blendShadowCells(sv, shd::vdbShadowLayer(light, frame.counts.w), k).transmittance);
+}
+
 }  // namespace
 
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
@@ -50,7 +58,9 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
     const glm::ivec3 froxelDims = glm::ivec3(frame.froxelDims);
     sv.dims = shd::shadowVolumeDims(froxelDims, reduction);
     const int lights = static_cast<int>(cs.lights.size());
-    sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * cs.lights.size(),
+    // With vdb shadows on (frame.vdb.x), a second layer per light after the analytic ones.
+    const size_t layers = cs.lights.size() * (frame.vdb.x > 0 ? 2 : 1);
+    sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * layers,
                             glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
     // One row of cells (light, z, y) per item.
     parallelFor(lights * sv.dims.z * sv.dims.y, threads, [&](int r) {
@@ -64,6 +74,10 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
             const shd::LightSample ls = shd::evalLight(l, p);
             const glm::vec3 t = lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, frame.shadows.x);
             sv.transmittance[shadowIndex(sv.dims, light, glm::ivec3(x, y, z))] = glm::vec4(t, 0.0f);
+            if (frame.vdb.x <= 0) continue;
+            const glm::vec3 tau = vdbFogOpticalDepth(cs, frame, l, p, ls.toLight, ls.distance);
+            sv.transmittance[shadowIndex(sv.dims, shd::vdbShadowLayer(light, lights), glm::ivec3(x, y, z))] =
+                glm::vec4(tau, 0.0f);
         }
     });
     return sv;
@@ -74,9 +88,10 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
                                  float distance) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
     if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
+    const glm::vec3 vdb = vdbLayerBlend(sv, frame, light, k);
     const shd::ShadowBlend b = blendShadowCells(sv, light, k);
-    if (b.trusted) return b.transmittance;
-    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x);
+    if (b.trusted) return b.transmittance * vdb;
+    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x) * vdb;
 }
 
 glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
@@ -84,11 +99,14 @@ glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& s
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
     if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
     const shd::SurfaceShadowLookup s = shd::shadowLookupAt(glm::vec3(shd::froxelCoordFromWorld(p, frame)), frame, sv.reduction);
+    // The vdb layer at the clamped lookup even outside the grid's sample points (the image borders'
+    // half froxel, past the froxel far): there is no exact form to fall back on.
+    const glm::vec3 vdb = vdbLayerBlend(sv, frame, light, s.k);
     if (s.inside) {
         const shd::ShadowBlend b = blendShadowCells(sv, light, s.k);
-        if (b.trusted) return b.transmittance;
+        if (b.trusted) return b.transmittance * vdb;
     }
-    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x);
+    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x) * vdb;
 }
 
 }  // namespace brume

@@ -33,7 +33,10 @@ void applyShadowSettings(shd::FrameUniforms& frame, const RenderRequest& request
 
 // Each shadowing light's transmittance on the reduced grid, light after light: index
 // ((light * d.z + z) * d.y + y) * d.x + x, d = shd::shadowVolumeDims (the GPU's image stacks the
-// lights along z the same way). Lights shd::fogShadowsLight skips hold 1.
+// lights along z the same way). Lights shd::fogShadowsLight skips hold 1. With vdb shadows on
+// (frame.vdb.x > 0, core/vdb_shadow.h) layers lights..2*lights-1 follow with each light's vdb
+// transmittance (shd::vdbShadowLayer), which froxelFogTransmittance and surfaceFogTransmittance
+// multiply in.
 struct ShadowVolume {
     glm::ivec3 dims{0};
     int reduction = 1;

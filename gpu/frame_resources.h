@@ -52,7 +52,7 @@ struct FrameResources {
     Buffer localShadowMaps;
 
     // Every vdb volume's NanoVDB grid back to back (compileScene's order and offsets), sparse as
-    // imported: GPU memory is the NanoVDB size. Re-uploaded only when the set of grids changes.
+    // imported: GPU memory is the NanoVDB size plus the occupancy cells. Re-uploaded only when the set of grids changes.
     Buffer vdbGrids;                // uint[], at least 32 bytes
     // The grids it holds, in order; held so that a new grid cannot reuse a freed one's address.
     std::vector<std::shared_ptr<const DensityGrid>> vdbGridsUploaded;

@@ -157,8 +157,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureScreenImages(size, dirty));
     const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
     res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
+    // Scenes with vdb grids keep room for each light's vdb layer (shared/vdb_shadow.h) after the
+    // analytic ones, whether or not this frame's request fills it.
+    bool anyGrid = false;
+    for (const DensityGridPtr& g : cs.grids) anyGrid = anyGrid || g != nullptr;
     const size_t entries = static_cast<size_t>(cells.x) * static_cast<size_t>(cells.y) * static_cast<size_t>(cells.z) *
-                           std::max<size_t>(cs.lights.size(), 1);
+                           std::max<size_t>(cs.lights.size(), 1) * (anyGrid ? 2 : 1);
     BRUME_TRY(ensureBuffer(res.shadowTransmittance, entries * sizeof(glm::vec4), storage, Memory::DeviceLocal,
                            "shadow transmittance", dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
@@ -205,7 +209,7 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
 
     // First: the light pass and the surfaces of the geometry pass read it.
     timer.begin(cmd, "shadow volume");
-    recordShadowVolume(cmd, shadowVolume, bindings, res.shadowExtent);
+    recordShadowVolume(cmd, frameHasVdbVolumes ? shadowVolumeVdb : shadowVolume, bindings, res.shadowExtent);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     timer.end(cmd);

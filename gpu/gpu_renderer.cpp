@@ -9,6 +9,7 @@
 #include "core/light_reach.h"
 #include "core/shadows.h"
 #include "core/sun_shadow.h"
+#include "core/vdb_shadow.h"
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
@@ -55,6 +56,7 @@ Result<void> GpuRenderer::State::createPasses() {
     geometry = std::move(g.value());
     for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&voxelizeVdb, &createVoxelizeVdbPass},
                                 std::pair{&shadowVolume, &createShadowVolumePass},
+                                std::pair{&shadowVolumeVdb, &createShadowVolumeVdbPass},
                                 std::pair{&light, &createLightPass}, std::pair{&temporal, &createTemporalPass},
                                 std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass},
                                 std::pair{&debugView, &createDebugViewPass}}) {
@@ -117,11 +119,13 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     if (request.width < 1 || request.height < 1)
         return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
                      std::to_string(request.height) + "."};
-    const CompiledScene cs = compileScene(scene);
+    CompiledScene cs = compileScene(scene);
+    applyVdbCullingSettings(cs, request);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
     applyShadowSettings(frame, request);
     applySunShadowSettings(frame, cs);
+    applyVdbShadowSettings(frame, cs, request);
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
@@ -167,6 +171,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         frame.jitter.w = t.useHistory ? t.historyWeight : 0.0f;
         applyShadowSettings(frame, request);  // as renderFroxelCpu
         applySunShadowSettings(frame, cs);
+        applyVdbShadowSettings(frame, cs, request);
         std::memcpy(r.frame.mapped, &frame, sizeof(frame));
         std::memcpy(r.previousFrame.mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);

@@ -7,6 +7,10 @@ Result<ComputePass> createShadowVolumePass(const Device& device, VkPipelineLayou
     return createComputePass(device, layout, "shadow_volume.comp", "shadow volume");
 }
 
+Result<ComputePass> createShadowVolumeVdbPass(const Device& device, VkPipelineLayout layout) {
+    return createComputePass(device, layout, "shadow_volume_vdb.comp", "shadow volume (vdb)");
+}
+
 // One invocation per cell and light (extent = cells x cells x cells * lights).
 void recordShadowVolume(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 extent) {
     bindComputePass(cmd, pass, b);

@@ -39,6 +39,9 @@ void recordVoxelize(VkCommandBuffer cmd, const ComputePass& pass, const Descript
 // Shadow volume. in: frame, volumes, lights, lightClusters (light reach). out: shadowTransmittance (each shadowing light's fog
 // transmittance on the reduced grid of shaders/shared/shadow_volume.h).
 Result<ComputePass> createShadowVolumePass(const Device& device, VkPipelineLayout layout);
+// The variant for scenes with vdb grids: also marches them into each light's vdb layer
+// (shaders/shared/vdb_shadow.h) when frame.vdb.x asks.
+Result<ComputePass> createShadowVolumeVdbPass(const Device& device, VkPipelineLayout layout);
 void recordShadowVolume(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, glm::ivec3 extent);
 
 // Light. in: frame, lights, media*, shadowTransmittance, sunShadowMap, localShadowMaps. out: source, counters.

@@ -29,7 +29,7 @@ struct GpuRenderer::State {
     FenceOwner fence;
     DescriptorBindings bindings;
     GeometryPass geometry;
-    ComputePass voxelize, voxelizeVdb, shadowVolume, light, integrate, composite;
+    ComputePass voxelize, voxelizeVdb, shadowVolume, shadowVolumeVdb, light, integrate, composite;
     ComputePass temporal;
     // Density texture variants of voxelize, created when a scene first needs them (vdb_grids.cpp);
     // index: the scene has vdb volumes (0/1).

@@ -19,23 +19,32 @@ ShadowBlend blendShadowCells(int light, ShadowLookup k) {
                        shadowCell(light, k, 0, 1, 1), shadowCell(light, k, 1, 1, 1), k.weights);
 }
 
+// Light `light`'s vdb layer blended at k (core: vdbLayerBlend; shared/vdb_shadow.h): 1 without vdb
+// shadows. No exact fallback: only the shadow volume pass marches grids.
+vec3 vdbShadowBlend(int light, ShadowLookup k) {
+    if (frame.vdb.x <= 0) return vec3(1.0f);
+    return vdbShadowTransmittance(blendShadowCells(vdbShadowLayer(light, frame.counts.w), k).transmittance);
+}
+
 // The light pass's transmittance (core: froxelFogTransmittance): the shadow volume's trilinear
 // blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
 // k: shadowLookup of the froxel, computed once for all lights.
 vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    vec3 vdb = vdbShadowBlend(light, k);
     ShadowBlend b = blendShadowCells(light, k);
-    if (b.trusted) return b.transmittance;
-    return lightFogTransmittance(lights[light], p, toLight, distance);
+    if (b.trusted) return b.transmittance * vdb;
+    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
 }
 
 // Surfaces (core: surfaceFogTransmittance): the volume inside the grid, exact outside and at edges.
 // s: shadowLookupAt of p, computed once for all lights.
 vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
     if (s.inside) {
         ShadowBlend b = blendShadowCells(light, s.k);
-        if (b.trusted) return b.transmittance;
+        if (b.trusted) return b.transmittance * vdb;
     }
-    return lightFogTransmittance(lights[light], p, toLight, distance);
+    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
 }

@@ -11,9 +11,21 @@ float vdbVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk)
     return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
 }
 
-// Density of vdb volume v at a world position, without bounds test (core: volumeDensity).
+// Whether the trilinear cell with lower corner `base` may be non-zero (core: DensityGrid::occupied;
+// shared/vdb.h vdbOccupancyWord), read from the cells after the grid (VolumeData.kind.w).
+bool vdbOccupied(VolumeData v, ivec3 base) {
+    uint h = uint(v.kind.y + v.kind.w) / 4u;
+    ivec3 origin = ivec3(int(vdbGridWords[h]), int(vdbGridWords[h + 1u]), int(vdbGridWords[h + 2u]));
+    ivec3 dims = ivec3(int(vdbGridWords[h + 4u]), int(vdbGridWords[h + 5u]), int(vdbGridWords[h + 6u]));
+    int w = vdbOccupancyWord(base, origin, dims);
+    return w >= 0 && vdbGridWords[h + uint(VDB_OCCUPANCY_HEADER_WORDS + w)] != 0u;
+}
+
+// Density of vdb volume v at a world position, without bounds test (core: volumeDensity). Cells the
+// occupancy grid marks empty return 0 without walking the tree.
 float vdbDensity(VolumeData v, vec3 worldPos) {
     if (v.kind.z == 0) return 0.0f;
+    if (v.kind.w != 0 && !vdbOccupied(v, vdbCell(vdbIndexPos(v, worldPos)).base)) return 0.0f;
     pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // GLSL's PNanoVDB reads the global vdbGridWords
     pnanovdb_grid_handle_t grid;
     grid.address.byte_offset = uint(v.kind.y);

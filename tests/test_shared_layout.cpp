@@ -134,6 +134,7 @@ void expectFrameUniforms(const std::string& p) {
     EXPECT_MEMBER(p, FrameUniforms, counts);
     EXPECT_MEMBER(p, FrameUniforms, jitter);
     EXPECT_MEMBER(p, FrameUniforms, shadows);
+    EXPECT_MEMBER(p, FrameUniforms, vdb);
 }
 
 void expectVolumeData(const std::string& p) {
@@ -207,7 +208,7 @@ TEST(SharedLayout, SunShadowFitStd430MatchesCpp) {
 TEST(SharedLayout, SizesAreTheDocumentedOnes) {
     EXPECT_EQ(sizeof(shd::VolumeData), 240u);
     EXPECT_EQ(sizeof(shd::LightData), 80u);
-    EXPECT_EQ(sizeof(shd::FrameUniforms), 384u);
+    EXPECT_EQ(sizeof(shd::FrameUniforms), 400u);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "distant.h"
 #include "shadows.h"
 #include "shadow_volume.h"
+#include "vdb_shadow.h"
 #include "clusters.h"
 #include "sun_shadow.h"
 #include "local_shadow.h"

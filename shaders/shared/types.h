@@ -39,7 +39,8 @@ struct VolumeData {
     vec4 emission;        // rgb: emitted radiance per meter at density 1; a: unused
     vec4 params;          // box: x edge_fade. height: x base_height, y falloff [1/m] or transition
                           // height [m]. depth: x visibility_distance, y start_distance. vdb: x density_scale, y shortest voxel edge [m]
-    ivec4 kind;           // x: VOLUME_*; vdb: y byte offset of its grid in the GPU grid buffer, z 1 = has a grid
+    ivec4 kind;           // x: VOLUME_*; vdb: y byte offset of its grid in the GPU grid buffer, z 1 = has a grid,
+                          // w byte offset of its occupancy cells after y (vdb.h), 0 = no culling
     vec4 worldMin;        // xyz: world-space bounds of non-zero density (+-BRUME_HUGE when unbounded)
     vec4 worldMax;
     // Density texture (density_texture.h), all zero when the volume has none.
@@ -79,6 +80,8 @@ struct FrameUniforms {
                           // (shadow_volume.h); z: index + 1 of the light the sun shadow
                           // map serves, 0 = none (sun_shadow.h); w: texels per side of each
                           // point/spot shadow map face, 0 = none (local_shadow.h)
+    ivec4 vdb;            // x: shadow march samples per shortest voxel edge, 0 = vdb volumes cast
+                          // no fog shadows (vdb_shadow.h); yzw unused
 };
 
 BRUME_NAMESPACE_END

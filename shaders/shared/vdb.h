@@ -32,6 +32,22 @@ BRUME_FUNC float vdbTrilinear(vec4 lo, vec4 hi, vec3 frac) {
     return mix(y0, y1, frac.y);
 }
 
+// Occupancy culling (docs/vdb.md): at import each grid gets a coarse grid of cells of 8^3 voxels (one
+// NanoVDB leaf), appended to its NanoVDB buffer at byte offset VolumeData.kind.w (0 = none): a header
+// of VDB_OCCUPANCY_HEADER_WORDS ints (origin cell xyz, pad, dims xyz, pad), then one uint per cell,
+// x fastest, non-zero where any voxel of [8c, 8c + 8]^3 is non-zero. Cell c holds the trilinear
+// lower corners 8c..8c+7, whose 8 taps reach 8c+8: where its word is 0 every tap is 0, so skipping
+// the tree walk there changes nothing.
+BRUME_CONST int VDB_OCCUPANCY_SHIFT = 3;
+BRUME_CONST int VDB_OCCUPANCY_HEADER_WORDS = 8;
+
+// Index (after the header) of the cell holding trilinear lower corner `base`; -1 outside the cells.
+BRUME_FUNC int vdbOccupancyWord(ivec3 base, ivec3 originCell, ivec3 dims) {
+    ivec3 c = (base >> VDB_OCCUPANCY_SHIFT) - originCell;  // arithmetic shift: floor division by 8
+    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, dims))) return -1;
+    return (c.z * dims.y + c.y) * dims.x + c.x;
+}
+
 BRUME_NAMESPACE_END
 
 #endif
