@@ -59,8 +59,8 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
     sv.dims = shd::shadowVolumeDims(froxelDims, reduction);
     const int lights = static_cast<int>(cs.lights.size());
     // With vdb shadows on (frame.vdb.x), a second layer per light after the analytic ones.
-    const size_t layers = cs.lights.size() * (frame.vdb.x > 0 ? 2 : 1);
-    sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * layers,
+    const size_t layerCount = cs.lights.size() * (frame.vdb.x > 0 ? 2 : 1);
+    sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * layerCount,
                             glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
     // One row of cells (light, z, y) per item.
     parallelFor(lights * sv.dims.z * sv.dims.y, threads, [&](int r) {
