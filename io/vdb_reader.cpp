@@ -208,14 +208,15 @@ std::string crashed(const std::string& file) {
     return file + ": the OpenVDB reader crashed reading this file (it is corrupt or not a VDB file).";
 }
 
-// Forwards "NN\n" lines from the reader to options.progress.
-void forwardProgress(int fd, std::string& pending, const VdbImportOptions& options) {
+// Forwards "NN\n" lines from the reader to options.progress; false at the end of the pipe.
+bool forwardProgress(int fd, std::string& pending, const VdbImportOptions& options) {
     char buf[256];
     const ssize_t n = read(fd, buf, sizeof buf);
-    if (n <= 0) return;
+    if (n <= 0) return false;
     pending.append(buf, static_cast<size_t>(n));
     for (size_t eol; (eol = pending.find('\n')) != std::string::npos; pending.erase(0, eol + 1))
         if (options.progress) options.progress(static_cast<float>(std::atoi(pending.c_str())) / 100.0f);
+    return true;
 }
 
 // Runs the reader to the end; returns its result.json, or the error sentence.
@@ -267,6 +268,9 @@ Result<json> runReader(const std::string& file, std::vector<std::string> args, c
             break;
         }
     }
+    if (!timedOut)  // what the reader wrote before it exited (its write end is closed: no blocking)
+        while (forwardProgress(fds[0], pending, options)) {
+        }
     close(fds[0]);
     if (timedOut) {
         std::ostringstream s;
