@@ -1,17 +1,33 @@
 #include "vdb_command.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "io/vdb_import.h"
+#include "progress.h"
 
 namespace brume::app {
 
 Result<void> loadGridsPrintingWarnings(Scene& scene, const std::string& scenePath, int memoryLimitMb) {
     std::vector<std::string> warnings;
-    Result<void> r = loadSceneGrids(scene, scenePath, static_cast<uint64_t>(memoryLimitMb) << 20, warnings);
+    // One progress line per large file, ended before the next starts (files load one after another).
+    std::unique_ptr<ProgressLine> line;
+    std::string lineFile;
+    auto progress = [&](const std::string& file, float fraction) {
+        if (!line || lineFile != file) {
+            if (line) line->complete();  // the previous file loaded
+            line = std::make_unique<ProgressLine>("reading " + file);
+            lineFile = file;
+        }
+        line->update(fraction);
+    };
+    Result<void> r = loadSceneGrids(scene, scenePath, static_cast<uint64_t>(memoryLimitMb) << 20, warnings, progress);
+    if (line && r) line->complete();
+    line.reset();
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     return r;
 }
@@ -75,7 +91,16 @@ void printText(const std::string& path, const std::vector<VdbGridInfo>& grids) {
 }  // namespace
 
 CommandResult runInfo(const InfoOptions& o) {
-    Result<std::vector<VdbGridInfo>> grids = inspectVdb(o.path);
+    VdbImportOptions options;
+    std::unique_ptr<ProgressLine> line;
+    std::error_code ec;
+    if (std::filesystem::file_size(o.path, ec) >= kVdbProgressBytes && !ec) {
+        line = std::make_unique<ProgressLine>("reading " + o.path);
+        options.progress = [&line](float fraction) { line->update(fraction); };
+    }
+    Result<std::vector<VdbGridInfo>> grids = inspectVdb(o.path, options);
+    if (line && grids) line->complete();
+    line.reset();
     if (!grids) return badInput(grids.error().message);
     if (o.json) {
         json j = {{"file", o.path}, {"grids", json::array()}};

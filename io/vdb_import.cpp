@@ -1,4 +1,6 @@
 #include "vdb_import.h"
+#include "vdb_inprocess.h"
+#include "vdb_stream.h"
 
 #include <cmath>
 #include <filesystem>
@@ -9,6 +11,7 @@
 
 
 #include <openvdb/openvdb.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
 
@@ -17,8 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Files above this size get status lines: OpenVDB reads without a progress callback, so the stages are
-// what the user sees.
+// Files above this size get status lines (in-process reads; the reader process reports progress).
 constexpr uintmax_t kLargeFileBytes = uintmax_t(32) << 20;
 
 void initOpenVdb() {
@@ -39,15 +41,16 @@ bool isScalar(const openvdb::GridBase& g) {
     return g.isType<openvdb::FloatGrid>() || g.isType<openvdb::DoubleGrid>();
 }
 
-// Every grid of the file. io::File, not io::Stream: Stream spins on some truncated files. Without
-// delayed loading, so no memory map can fault later.
-openvdb::GridPtrVecPtr readGrids(const std::string& path) {
+// Every grid of the file, in file order, read through VdbFileBuf (io/vdb_stream.h): a read past the
+// end of the file throws. Without delayed loading, so no memory map can fault later.
+openvdb::GridPtrVecPtr readGrids(const std::string& path, const std::function<void(float)>& progress) {
     initOpenVdb();
-    openvdb::io::File file(path);
-    file.open(/*delayLoad=*/false);
-    openvdb::GridPtrVecPtr grids = file.getGrids();
-    file.close();
-    return grids;
+    VdbFileBuf buf(path, progress);
+    if (!buf.isOpen()) throw std::runtime_error("cannot open it");
+    std::istream in(&buf);
+    in.exceptions(std::ios::badbit);  // the buffer's exception reaches the caller, not a quiet failbit
+    openvdb::io::Stream stream(in, /*delayLoad=*/false);
+    return stream.getGrids();
 }
 
 struct FileGrids {
@@ -55,28 +58,75 @@ struct FileGrids {
     std::vector<std::string> names;  // "name" or "name#i" where names repeat
 };
 
+void nameGrids(FileGrids& f) {
+    std::map<std::string, int> count, seen;
+    for (const auto& g : *f.grids) ++count[g->getName()];
+    for (const auto& g : *f.grids) {
+        const std::string& n = g->getName();
+        f.names.push_back(count[n] > 1 ? n + "#" + std::to_string(seen[n]++) : n);
+    }
+}
+
+// OpenVDB writes each grid's active voxel count into its metadata (file_voxel_count); a reader that
+// hits the end of a truncated uncompressed file fills the rest with zeros without a word, so a grid
+// that comes back with another count is truncated or corrupt.
+Result<void> checkComplete(const std::string& path, const std::string& name, const openvdb::GridBase& g) {
+    const auto declared = g.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
+    if (!declared) return {};
+    const uint64_t active = g.activeVoxelCount();
+    if (declared->value() >= 0 && static_cast<uint64_t>(declared->value()) == active) return {};
+    return Error{path + ": grid '" + name + "' holds " + std::to_string(active) + " active voxels where the file lists " +
+                 std::to_string(declared->value()) + " (the file is truncated or corrupt)."};
+}
+
 // Reads every grid (file versions, compression and half floats are the library's business).
-Result<FileGrids> readAll(const std::string& path, const std::function<void(const std::string&)>& status) {
+Result<FileGrids> readAll(const std::string& path, const std::function<void(const std::string&)>& status,
+                          const std::function<void(float)>& progress) {
     std::error_code ec;
     const uintmax_t bytes = fs::file_size(path, ec);
     if (ec) return Error{path + ": cannot read the file (" + ec.message() + ")."};
     if (status && bytes >= kLargeFileBytes) status("reading " + path + " (" + std::to_string(bytes >> 20) + " MiB)");
     FileGrids out;
     try {
-        out.grids = readGrids(path);
+        out.grids = readGrids(path, progress);
     } catch (const std::exception& e) {
         return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
     } catch (...) {
         return Error{path + ": not a readable OpenVDB file."};
     }
     if (!out.grids) return Error{path + ": not a readable OpenVDB file."};
-    std::map<std::string, int> count, seen;
-    for (const auto& g : *out.grids) ++count[g->getName()];
-    for (const auto& g : *out.grids) {
-        const std::string& n = g->getName();
-        out.names.push_back(count[n] > 1 ? n + "#" + std::to_string(seen[n]++) : n);
-    }
+    nameGrids(out);
+    for (size_t i = 0; i < out.grids->size(); ++i)
+        if (auto e = checkComplete(path, out.names[i], *(*out.grids)[i]); !e) return e.error();
     return out;
+}
+
+// Grid names, metadata and transforms only: what the grid choice and the memory cap need, before any
+// topology or voxel buffer is read.
+Result<FileGrids> readMetadata(const std::string& path) {
+    FileGrids out;
+    try {
+        initOpenVdb();
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
+        out.grids = file.readAllGridMetadata();  // seeks: reads no topology and no voxel buffer
+        file.close();
+    } catch (const std::exception& e) {
+        return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
+    } catch (...) {
+        return Error{path + ": not a readable OpenVDB file."};
+    }
+    if (!out.grids) return Error{path + ": not a readable OpenVDB file."};
+    nameGrids(out);
+    return out;
+}
+
+// The grid the metadata read chose, in the full read: by its "name" or "name#i" (the i-th grid of
+// that name in both reads' order).
+Result<openvdb::GridBase::Ptr> findChosen(const std::string& path, const FileGrids& all, const std::string& name) {
+    for (size_t i = 0; i < all.names.size(); ++i)
+        if (all.names[i] == name) return (*all.grids)[i];
+    return Error{path + ": not a readable OpenVDB file (grid '" + name + "' is missing)."};
 }
 
 std::string gridList(const FileGrids& f) {
@@ -160,6 +210,34 @@ std::string mib(uint64_t bytes) {
     return s.str();
 }
 
+int64_t declaredBytes(const openvdb::GridBase& g) {
+    const auto declared = g.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+    return declared ? std::max<int64_t>(0, declared->value()) : 0;
+}
+
+uint64_t declaredTotal(const FileGrids& meta) {
+    uint64_t total = 0;
+    for (const auto& g : *meta.grids) total += static_cast<uint64_t>(declaredBytes(*g));
+    return total;
+}
+
+// The cap, from the grids' metadata (file_mem_bytes: a grid's size in memory when written), so that
+// an oversized grid is refused before any buffer is read. The read holds every grid of the file at
+// once (io::Stream reads them all), so their sum counts too. Double grids are narrowed to float.
+Result<void> checkDeclaredMemory(const std::string& path, const FileGrids& meta, const openvdb::GridBase& chosen,
+                                 uint64_t limit) {
+    uint64_t bytes = static_cast<uint64_t>(declaredBytes(chosen));
+    if (chosen.isType<openvdb::DoubleGrid>()) bytes /= 2;
+    if (bytes > limit)
+        return Error{path + ": the grid needs " + mib(bytes) + " in memory, over the limit of " + mib(limit) +
+                     " (raise it with --vdb-memory-mb)."};
+    const uint64_t total = declaredTotal(meta);
+    if (total > limit)
+        return Error{path + ": its " + std::to_string(meta.grids->size()) + " grids need " + mib(total) +
+                     " in memory while it is read, over the limit of " + mib(limit) + " (raise it with --vdb-memory-mb)."};
+    return {};
+}
+
 Result<DensityGridPtr> toDensityGrid(const std::string& path, const openvdb::FloatGrid& g, uint64_t limit) {
     const uint64_t openBytes = g.memUsage();
     if (openBytes > limit)
@@ -172,10 +250,8 @@ Result<DensityGridPtr> toDensityGrid(const std::string& path, const openvdb::Flo
     return DensityGridPtr(std::make_shared<const DensityGrid>(handle.data(), handle.size()));
 }
 
-Result<VdbLoad> convert(const std::string& path, const FileGrids& f, size_t index, const VdbImportOptions& options,
-                        std::vector<std::string> warnings) {
-    const openvdb::GridBase::Ptr base = (*f.grids)[index];
-    const std::string& name = f.names[index];
+Result<VdbLoad> convert(const std::string& path, const openvdb::GridBase::Ptr& base, const std::string& name,
+                        const VdbImportOptions& options, std::vector<std::string> warnings) {
     if (!base->transform().isLinear())
         return Error{path + ": grid '" + name + "' has a frustum (non-affine) transform, which is not supported."};
     openvdb::FloatGrid::Ptr g = asFloat(base);
@@ -252,8 +328,11 @@ VdbGridInfo describe(const openvdb::GridBase::Ptr& g, const std::string& name) {
 
 }  // namespace
 
-Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path) {
-    auto file = readAll(path, {});
+Result<std::vector<VdbGridInfo>> inspectVdbInProcess(const std::string& path, const VdbImportOptions& options) {
+    auto meta = readMetadata(path);
+    if (!meta) return meta.error();
+    if (options.beforeRead) options.beforeRead(declaredTotal(meta.value()));
+    auto file = readAll(path, {}, options.progress);
     if (!file) return file.error();
     std::vector<VdbGridInfo> out;
     try {
@@ -294,7 +373,8 @@ Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std
 }  // namespace
 
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,
-                            std::vector<std::string>& warnings) {
+                            std::vector<std::string>& warnings,
+                            const std::function<void(const std::string&, float)>& progress) {
     for (size_t i = 0; i < scene.volumes.size(); ++i) {
         Volume& v = scene.volumes[i];
         if (v.density_texture) {
@@ -307,7 +387,11 @@ Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t
         VdbImportOptions options;
         options.grid = v.grid;
         options.memoryLimitBytes = memoryLimitBytes;
-        auto load = loadVdbDensity(p.lexically_normal().string(), options);
+        const std::string path = p.lexically_normal().string();
+        std::error_code ec;
+        if (progress && fs::file_size(path, ec) >= kVdbProgressBytes && !ec)
+            options.progress = [&progress, path](float f) { progress(path, f); };
+        auto load = loadVdbDensity(path, options);
         if (!load) return Error{sceneFile + ": volumes[" + std::to_string(i) + "].file: " + load.error().message};
         v.density = load.value().grid;
         for (std::string& w : load.value().warnings) warnings.push_back(std::move(w));
@@ -315,14 +399,26 @@ Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t
     return {};
 }
 
-Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& options) {
-    auto file = readAll(path, options.status);
-    if (!file) return file.error();
+Result<VdbLoad> loadVdbDensityInProcess(const std::string& path, const VdbImportOptions& options) {
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) return Error{path + ": cannot read the file (" + ec.message() + ")."};
+    if (options.status && bytes >= kLargeFileBytes)
+        options.status("reading " + path + " (" + std::to_string(bytes >> 20) + " MiB)");
+    auto meta = readMetadata(path);
+    if (!meta) return meta.error();
     std::vector<std::string> warnings;
-    auto index = chooseGrid(path, file.value(), options.grid, warnings);
+    auto index = chooseGrid(path, meta.value(), options.grid, warnings);
     if (!index) return index.error();
+    const openvdb::GridBase& chosen = *(*meta.value().grids)[index.value()];
+    if (auto e = checkDeclaredMemory(path, meta.value(), chosen, options.memoryLimitBytes); !e) return e.error();
+    if (options.beforeRead) options.beforeRead(declaredTotal(meta.value()));
+    auto all = readAll(path, {}, options.progress);
+    if (!all) return all.error();
+    auto grid = findChosen(path, all.value(), meta.value().names[index.value()]);
+    if (!grid) return grid.error();
     try {
-        return convert(path, file.value(), index.value(), options, std::move(warnings));
+        return convert(path, grid.value(), meta.value().names[index.value()], options, std::move(warnings));
     } catch (const std::exception& e) {
         return Error{path + ": cannot convert the grid (" + std::string(e.what()) + ")."};
     } catch (...) {

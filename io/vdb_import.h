@@ -3,6 +3,8 @@
 // picks one scalar grid, turns a level set into a fog volume, replaces NaN/Inf/negative values by 0,
 // refuses grids over a memory cap and converts the result to a float NanoVDB grid.
 // Every OpenVDB exception stops here: errors are values, one sentence naming the file.
+// OpenVDB runs in a separate process (brume-vdb-read, found beside the running executable): a file
+// that crashes the library gives an error, never a crash of Brume (io/vdb_reader.cpp).
 #pragma once
 
 #include <cstdint>
@@ -23,8 +25,15 @@ struct VdbImportOptions {
     // (0-based) of several grids with that name.
     std::string grid = "density";
     uint64_t memoryLimitBytes = uint64_t(4096) << 20;
-    // Status lines for large files ("reading ...", "converting ..."); optional.
+    // Status lines for large files ("reading ...", "converting ..."); optional. In-process reads only.
     std::function<void(const std::string&)> status;
+    // Fraction of the file read so far (0..1), reported by the reader process; optional.
+    std::function<void(float)> progress;
+    // The reader is killed and the load fails after this long; 0: no limit (a large file is slow).
+    double timeoutSeconds = 0.0;
+    // In-process reads: called with the memory the file's grids declare (their metadata; 0 when
+    // unknown) once it is known, before any voxel is read; the reader process caps its memory there.
+    std::function<void(uint64_t)> beforeRead;
 };
 
 struct VdbLoad {
@@ -51,11 +60,16 @@ struct VdbGridInfo {
     uint64_t nanovdbFp16Bytes = 0, nanovdbFp8Bytes = 0;
 };
 
-Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path);
+Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path, const VdbImportOptions& options = {});
+
+// Files at least this large report reading progress (loadSceneGrids passes `progress` on for them).
+inline constexpr uint64_t kVdbProgressBytes = uint64_t(4) << 20;
 
 // Loads the grid of every vdb volume (file relative to scene.baseDir) into Volume::density.
 // Errors read "SCENE: volumes[i].file: what is wrong"; warnings go to `warnings`.
+// progress(file, fraction), for files of kVdbProgressBytes or more; optional.
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,
-                            std::vector<std::string>& warnings);
+                            std::vector<std::string>& warnings,
+                            const std::function<void(const std::string&, float)>& progress = {});
 
 }  // namespace brume

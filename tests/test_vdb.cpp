@@ -376,9 +376,8 @@ void expectSentence(const std::string& message, const std::string& file) {
 
 }  // namespace
 
-// Every truncation is an error naming the file. Known gaps, left open (see docs/vdb.md): OpenVDB 10
-// crashes on some flipped bytes and loads some truncated uncompressed files (oiio_sphere.vdb cut in
-// half) without noticing; reading in an isolated process is the fix.
+// Every truncation is an error naming the file (byte flips, the crash, the truncated uncompressed
+// file and the memory cap: tests/test_vdb_robust.cpp).
 TEST_F(Vdb, TruncatedFilesGiveOneSentenceErrors) {
     BRUME_REQUIRE_SHARED_VDB();
     for (const char* name : {"gaffer_arnold_sphere.vdb", "usd_smoke_000002.vdb", "plasmadxr_fluid_data_0001.vdb"}) {

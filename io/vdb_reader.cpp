@@ -1,0 +1,347 @@
+// Both sides of the isolated reader (io/vdb_reader.h): the child's main and the parent's spawn, wait
+// and decode. The child runs the in-process import (io/vdb_inprocess.h); only bytes and JSON cross.
+#include "vdb_reader.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nanovdb/NanoVDB.h>
+#include <nlohmann/json.hpp>
+
+#include "vdb_import.h"
+#include "vdb_inprocess.h"
+
+extern char** environ;
+
+namespace brume {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int kProgressFd = 3;
+constexpr const char* kReaderName = "brume-vdb-read";
+
+// ---- wire format: VdbGridInfo <-> JSON ----
+
+json vec3(glm::dvec3 v) { return json::array({v.x, v.y, v.z}); }
+glm::dvec3 dvec3(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+glm::ivec3 ivec3(const json& j) { return {j.at(0).get<int>(), j.at(1).get<int>(), j.at(2).get<int>()}; }
+
+json toJson(const VdbGridInfo& g) {
+    json m = json::array();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) m.push_back(g.gridFromIndex[c][r]);
+    return {{"name", g.name}, {"type", g.type}, {"class", g.gridClass}, {"voxel_size", vec3(g.voxelSize)},
+            {"grid_from_index", m}, {"affine", g.affine}, {"active_voxels", g.activeVoxels},
+            {"index_min", json::array({g.indexMin.x, g.indexMin.y, g.indexMin.z})},
+            {"index_max", json::array({g.indexMax.x, g.indexMax.y, g.indexMax.z})},
+            {"world_min", vec3(g.worldMin)}, {"world_max", vec3(g.worldMax)}, {"value_min", g.valueMin},
+            {"value_max", g.valueMax}, {"nanovdb", g.nanovdbBytes}, {"nanovdb_fp16", g.nanovdbFp16Bytes},
+            {"nanovdb_fp8", g.nanovdbFp8Bytes}};
+}
+
+VdbGridInfo fromJson(const json& j) {
+    VdbGridInfo g;
+    g.name = j.at("name").get<std::string>();
+    g.type = j.at("type").get<std::string>();
+    g.gridClass = j.at("class").get<std::string>();
+    g.voxelSize = dvec3(j.at("voxel_size"));
+    const json& m = j.at("grid_from_index");
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) g.gridFromIndex[c][r] = m.at(static_cast<size_t>(c * 4 + r)).get<double>();
+    g.affine = j.at("affine").get<bool>();
+    g.activeVoxels = j.at("active_voxels").get<uint64_t>();
+    g.indexMin = ivec3(j.at("index_min"));
+    g.indexMax = ivec3(j.at("index_max"));
+    g.worldMin = dvec3(j.at("world_min"));
+    g.worldMax = dvec3(j.at("world_max"));
+    g.valueMin = j.at("value_min").get<double>();
+    g.valueMax = j.at("value_max").get<double>();
+    g.nanovdbBytes = j.at("nanovdb").get<uint64_t>();
+    g.nanovdbFp16Bytes = j.at("nanovdb_fp16").get<uint64_t>();
+    g.nanovdbFp8Bytes = j.at("nanovdb_fp8").get<uint64_t>();
+    return g;
+}
+
+// ---- the child ----
+
+bool writeFile(const fs::path& path, const void* data, size_t size) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+    return static_cast<bool>(out.flush());
+}
+
+// Last, by rename: the parent never sees half a result.
+bool writeResult(const fs::path& dir, const json& j) {
+    const std::string text = j.dump();
+    return writeFile(dir / "result.json.tmp", text.data(), text.size()) &&
+           std::rename((dir / "result.json.tmp").c_str(), (dir / "result.json").c_str()) == 0;
+}
+
+// Writes "NN\n" (percent of the file read) on the progress descriptor, when the parent opened it.
+std::function<void(float)> progressWriter() {
+    if (fcntl(kProgressFd, F_GETFD) == -1) return {};
+    return [](float fraction) {
+        const std::string line = std::to_string(static_cast<int>(fraction * 100.0f)) + "\n";
+        if (write(kProgressFd, line.data(), line.size()) < 0) return;  // the parent went away: keep reading
+    };
+}
+
+// A corrupt length or count can make OpenVDB allocate and zero-fill gigabytes (a flipped byte in
+// oiio_sphere.vdb's header made it touch 2.6 GB). The data-segment limit turns that into
+// std::bad_alloc, an error value: small while the header and metadata are read, then what the grids
+// declare (3x: the grid, its float copy, its NanoVDB), never above 3x the user's memory cap.
+constexpr uint64_t kBaseBytes = uint64_t(512) << 20;
+
+void setDataLimit(uint64_t soft, uint64_t hard) {
+    const rlimit r{std::min(soft, hard), hard};
+    setrlimit(RLIMIT_DATA, &r);
+}
+
+VdbImportOptions cappedOptions(uint64_t memoryLimitBytes) {
+    const uint64_t hard = std::min<uint64_t>(memoryLimitBytes, uint64_t(1) << 40) * 3 + kBaseBytes;
+    setDataLimit(kBaseBytes, hard);
+    const rlimit noCore{0, 0};  // a crash is an expected outcome here: no core file
+    setrlimit(RLIMIT_CORE, &noCore);
+    VdbImportOptions options;
+    options.memoryLimitBytes = memoryLimitBytes;
+    options.progress = progressWriter();
+    options.beforeRead = [hard](uint64_t declared) {
+        setDataLimit(declared > 0 ? std::min<uint64_t>(declared, uint64_t(1) << 40) * 3 + kBaseBytes : hard, hard);
+    };
+    return options;
+}
+
+json runLoad(const std::string& file, const std::string& grid, uint64_t limit, const fs::path& dir) {
+    VdbImportOptions options = cappedOptions(limit);
+    options.grid = grid;
+    Result<VdbLoad> r = loadVdbDensityInProcess(file, options);
+    if (!r) return {{"ok", false}, {"error", r.error().message}};
+    const DensityGrid& g = *r.value().grid;
+    if (!writeFile(dir / "grid.nvdb", g.data(), g.size()))
+        return {{"ok", false}, {"error", file + ": cannot write the converted grid to " + dir.string() + "."}};
+    return {{"ok", true}, {"grid_name", r.value().gridName}, {"warnings", r.value().warnings}};
+}
+
+json runInfo(const std::string& file, uint64_t limit) {
+    Result<std::vector<VdbGridInfo>> r = inspectVdbInProcess(file, cappedOptions(limit));
+    if (!r) return {{"ok", false}, {"error", r.error().message}};
+    json grids = json::array();
+    for (const VdbGridInfo& g : r.value()) grids.push_back(toJson(g));
+    return {{"ok", true}, {"grids", grids}};
+}
+
+}  // namespace
+
+int vdbReaderMain(int argc, char** argv) {
+    const std::string mode = argc > 1 ? argv[1] : "";
+    const bool load = mode == "load" && argc == 6, info = mode == "info" && argc == 5;
+    if (!load && !info) {
+        std::fprintf(stderr, "usage: %s load FILE GRID MEMORY_LIMIT_BYTES OUT_DIR | info FILE MEMORY_LIMIT_BYTES "
+                             "OUT_DIR\n(Brume's isolated OpenVDB reader; brume runs it.)\n", argv[0]);
+        return 2;
+    }
+    const std::string file = argv[2];
+    const uint64_t limit = std::strtoull(argv[load ? 4 : 3], nullptr, 10);
+    const fs::path dir = argv[load ? 5 : 4];
+    json result;
+    try {
+        result = load ? runLoad(file, argv[3], limit, dir) : runInfo(file, limit);
+    } catch (const std::exception& e) {
+        result = {{"ok", false}, {"error", file + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."}};
+    }
+    return writeResult(dir, result) ? 0 : 3;
+}
+
+// ---- the parent ----
+
+namespace {
+
+// A private folder for one read's result, removed with everything in it.
+class TempDir {
+public:
+    TempDir() {
+        std::string pattern = (fs::temp_directory_path() / "brume-vdb-XXXXXX").string();
+        if (mkdtemp(pattern.data())) path_ = pattern;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        if (!path_.empty()) fs::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+// Beside the running executable (brume, brume-editor); else the build tree's, for the tests.
+fs::path findReader() {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec && fs::exists(self.parent_path() / kReaderName, ec)) return self.parent_path() / kReaderName;
+#ifdef BRUME_VDB_READER_BUILD_PATH
+    if (fs::exists(BRUME_VDB_READER_BUILD_PATH, ec)) return BRUME_VDB_READER_BUILD_PATH;
+#endif
+    return {};
+}
+
+std::string crashed(const std::string& file) {
+    return file + ": the OpenVDB reader crashed reading this file (it is corrupt or not a VDB file).";
+}
+
+// Forwards "NN\n" lines from the reader to options.progress; false at the end of the pipe.
+bool forwardProgress(int fd, std::string& pending, const VdbImportOptions& options) {
+    char buf[256];
+    const ssize_t n = read(fd, buf, sizeof buf);
+    if (n <= 0) return false;
+    pending.append(buf, static_cast<size_t>(n));
+    for (size_t eol; (eol = pending.find('\n')) != std::string::npos; pending.erase(0, eol + 1))
+        if (options.progress) options.progress(static_cast<float>(std::atoi(pending.c_str())) / 100.0f);
+    return true;
+}
+
+// Runs the reader to the end; returns its result.json, or the error sentence.
+Result<json> runReader(const std::string& file, std::vector<std::string> args, const fs::path& dir,
+                       const VdbImportOptions& options) {
+    const fs::path reader = findReader();
+    if (reader.empty())
+        return Error{file + ": cannot read it: " + kReaderName + " (Brume's OpenVDB reader) is not installed beside brume."};
+    args.insert(args.begin(), reader.string());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0) return Error{file + ": cannot start the OpenVDB reader (no pipe)."};
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);  // OpenVDB's own chatter
+    // dup2 onto another number clears close-on-exec; onto itself it would not, so move it first.
+    int writeEnd = fds[1];
+    if (writeEnd == kProgressFd) writeEnd = fcntl(fds[1], F_DUPFD_CLOEXEC, kProgressFd + 1);
+    posix_spawn_file_actions_adddup2(&actions, writeEnd, kProgressFd);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(fds[1]);
+    if (writeEnd != fds[1]) close(writeEnd);
+    if (spawned != 0) {
+        close(fds[0]);
+        return Error{file + ": cannot start the OpenVDB reader " + reader.string() + " (" + std::strerror(spawned) + ")."};
+    }
+
+    const auto start = std::chrono::steady_clock::now();
+    std::string pending;
+    int status = 0;
+    bool timedOut = false;
+    for (;;) {
+        pollfd p{fds[0], POLLIN, 0};
+        if (poll(&p, 1, 50) > 0 && (p.revents & POLLIN)) forwardProgress(fds[0], pending, options);
+        const pid_t done = waitpid(pid, &status, WNOHANG);
+        if (done == pid || (done < 0 && errno != EINTR)) break;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (options.timeoutSeconds > 0.0 && seconds > options.timeoutSeconds) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            timedOut = true;
+            break;
+        }
+    }
+    if (!timedOut)  // what the reader wrote before it exited (its write end is closed: no blocking)
+        while (forwardProgress(fds[0], pending, options)) {
+        }
+    close(fds[0]);
+    if (timedOut) {
+        std::ostringstream s;
+        s << file << ": the OpenVDB reader did not finish within " << options.timeoutSeconds
+          << " s (the file may be corrupt).";
+        return Error{s.str()};
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return Error{crashed(file)};
+    try {
+        std::ifstream in(dir / "result.json");
+        json result = json::parse(in);
+        if (!result.at("ok").get<bool>()) return Error{result.at("error").get<std::string>()};
+        return result;
+    } catch (const std::exception&) {
+        return Error{crashed(file)};
+    }
+}
+
+// The reader's NanoVDB grid, mapped and checked (a float grid of exactly the file's size) before use.
+Result<DensityGridPtr> mapGrid(const std::string& file, const fs::path& nvdb) {
+    const std::string bad = file + ": the OpenVDB reader returned an unreadable grid.";
+    const int fd = open(nvdb.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return Error{bad};
+    struct stat st {};
+    const size_t size = fstat(fd, &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
+    void* bytes = size >= sizeof(nanovdb::GridData) ? mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : MAP_FAILED;
+    close(fd);
+    if (bytes == MAP_FAILED) return Error{bad};
+    const auto* grid = static_cast<const nanovdb::GridData*>(bytes);
+    const bool ok = grid->mMagic == NANOVDB_MAGIC_NUMBER && grid->mGridSize == size &&
+                    grid->mGridType == nanovdb::GridType::Float;
+    DensityGridPtr out = ok ? std::make_shared<const DensityGrid>(bytes, size) : nullptr;
+    munmap(bytes, size);
+    if (!out) return Error{bad};
+    return out;
+}
+
+}  // namespace
+
+Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& options) {
+    TempDir dir;
+    if (dir.path().empty()) return Error{path + ": cannot create a temporary folder for reading it."};
+    Result<json> r = runReader(path, {"load", path, options.grid, std::to_string(options.memoryLimitBytes),
+                                      dir.path().string()}, dir.path(), options);
+    if (!r) return r.error();
+    Result<DensityGridPtr> grid = mapGrid(path, dir.path() / "grid.nvdb");
+    if (!grid) return grid.error();
+    VdbLoad load;
+    load.grid = grid.value();
+    try {
+        load.gridName = r.value().at("grid_name").get<std::string>();
+        load.warnings = r.value().at("warnings").get<std::vector<std::string>>();
+    } catch (const std::exception&) {
+        return Error{crashed(path)};
+    }
+    return load;
+}
+
+Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path, const VdbImportOptions& options) {
+    TempDir dir;
+    if (dir.path().empty()) return Error{path + ": cannot create a temporary folder for reading it."};
+    Result<json> r = runReader(path, {"info", path, std::to_string(options.memoryLimitBytes), dir.path().string()},
+                               dir.path(), options);
+    if (!r) return r.error();
+    std::vector<VdbGridInfo> grids;
+    try {
+        for (const json& g : r.value().at("grids")) grids.push_back(fromJson(g));
+    } catch (const std::exception&) {
+        return Error{crashed(path)};
+    }
+    return grids;
+}
+
+}  // namespace brume
