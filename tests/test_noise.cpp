@@ -15,6 +15,7 @@
 #include <openvdb/openvdb.h>
 
 #include "core/noise.h"
+#include "io/image_io.h"
 #include "io/scene_json.h"
 #include "io/vdb_import.h"
 #include "test_support.h"
@@ -237,4 +238,32 @@ TEST_F(Noise, HelpNamesEveryFlagWithItsRange) {
     EXPECT_EQ(r.exitCode, 0);
     for (const char* s : {"--size", "8..256", "--octaves", "--frequency", "--seed", "--grid", "density", "OUT"})
         EXPECT_NE(r.out.find(s), std::string::npos) << s << " missing from:\n" << r.out;
+}
+
+// The shipped asset: a small tile, and a scene whose mist visibly drifts with the scene time.
+TEST_F(Noise, DriftingMistSceneRendersFiniteAndDrifts) {
+    const fs::path assets = fs::path(BRUME_SOURCE_DIR) / "assets";
+    EXPECT_LT(fs::file_size(assets / "noise" / "mist.vdb"), 300u * 1024u) << "keep the asset small";
+    const Tile mist = readTile(assets / "noise" / "mist.vdb", "density");
+    EXPECT_EQ(mist.activeVoxels, 32u * 32u * 32u);
+    const std::string scene = quoted((assets / "scenes" / "drifting_mist.json").string());
+    ASSERT_EQ(brume("validate " + scene).exitCode, 0);
+    const std::string small = " --width 96 --height 54 --quality low";
+    const CliRun r0 = brume("render " + scene + " -o t0.exr --time 0 --frames 4 --fps 24" + small);
+    ASSERT_EQ(r0.exitCode, 0) << r0.err;
+    const CliRun r2 = brume("render " + scene + " -o t2.exr --time 2 --frames 4 --fps 24" + small);
+    ASSERT_EQ(r2.exitCode, 0) << r2.err;
+    Result<Image> a = readExr(path("t0.exr").string()), b = readExr(path("t2.exr").string());
+    ASSERT_TRUE(a.ok() && b.ok());
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < a.value().pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_TRUE(std::isfinite(a.value().pixels[i][c]) && std::isfinite(b.value().pixels[i][c]));
+            diff += std::abs(a.value().pixels[i][c] - b.value().pixels[i][c]);
+            sum += a.value().pixels[i][c];
+        }
+    }
+    EXPECT_GT(sum, 0.0);
+    // 2 s of 0.85 m/s wind moves the box's 3 m noise tile by more than half a tile.
+    EXPECT_GT(diff / sum, 0.01) << "the mist should drift between time 0 and time 2";
 }
