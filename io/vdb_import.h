@@ -53,6 +53,11 @@ struct VdbGridInfo {
 
 Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path);
 
+// Loads volume i's density texture: its grid and mean (file relative to scene.baseDir). Errors read
+// "SCENE: volumes[i].density_texture.file: ..." (or .grid: for a grid without positive values).
+Result<void> loadDensityTexture(DensityTexture& texture, const Scene& scene, const std::string& sceneFile, size_t i,
+                                uint64_t memoryLimitBytes, std::vector<std::string>& warnings);
+
 // Loads the grid of every vdb volume (file relative to scene.baseDir) into Volume::density.
 // Errors read "SCENE: volumes[i].file: what is wrong"; warnings go to `warnings`.
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,

@@ -19,6 +19,9 @@ struct ViewKey {
     Quality quality = Quality::Low;
     int width = 0;
     int height = 0;
+    // Scene time (scene_time.h): a moving time restarts the count, so the view keeps rendering while
+    // a texture scrolls; the GPU history is kept and its neighbourhood clamp follows the drift.
+    double time = 0.0;
     bool operator==(const ViewKey&) const = default;
 };
 
