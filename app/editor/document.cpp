@@ -197,6 +197,13 @@ Result<void> Document::add(const std::vector<std::string>& a) {
         else if (a[1] == "depth") v.type = VolumeType::Depth;
         else if (a[1] == "vdb" && a.size() == 4) v.type = VolumeType::Vdb, v.file = a[3];
         else return Error{"\"" + a[1] + "\" is not a volume type to add: use box, height, depth or vdb NAME FILE."};
+        // A vdb volume arrives with its grid, as `import vdb` does; a file that cannot be read refuses the add.
+        if (v.type == VolumeType::Vdb) {
+            const std::filesystem::path p(v.file);
+            Result<VdbLoad> load = loadVdbDensity((p.is_absolute() ? p : std::filesystem::path(next.baseDir) / p).string(), {});
+            if (!load) return Error{"add volume vdb: " + load.error().message};
+            v.density = load.value().grid;
+        }
         v.name = name;
         next.volumes.push_back(v);
     } else if (a[0] == "light") {
