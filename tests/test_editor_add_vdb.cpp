@@ -1,6 +1,7 @@
 // `add volume vdb NAME FILE` (the outliner's add, and scripts) loads the grid like `import vdb`: the
 // new volume renders at once instead of staying empty until the scene is reopened. FILE is relative
-// to the scene's folder; a file that cannot be read refuses the add, naming it.
+// to the scene's folder; a file that cannot be read refuses the add, naming it. Edits keep a loaded
+// density texture (the JSON form does not carry grids) and read it again when its file changes.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -60,4 +61,24 @@ TEST(EditorAddVdb, UnreadableFileRefusesTheAdd) {
     EXPECT_NE(r.error().message.find("missing.vdb"), std::string::npos) << r.error().message;
     EXPECT_TRUE(doc.scene().volumes.empty());
     EXPECT_FALSE(doc.dirty());
+}
+
+TEST(EditorAddVdb, EditsKeepTheDensityTextureAndReloadItsFile) {
+    // A box whose texture names a file of another folder: not loaded yet (as parsed, before loading).
+    Scene s;
+    s.baseDir = kNoiseDir;
+    Volume box;
+    box.density_texture = DensityTexture{};
+    box.density_texture->file = "../scenes/absent.vdb";
+    s.volumes.push_back(box);
+    Document doc(s, "");
+    Result<void> set = run(doc, "set volumes[0].density_texture.file mist.vdb");
+    ASSERT_TRUE(set.ok()) << set.error().message;
+    ASSERT_TRUE(doc.scene().volumes[0].density_texture->density) << "setting the file loads the texture";
+    EXPECT_NEAR(doc.scene().volumes[0].density_texture->mean, 0.5f, 1e-3f);
+    ASSERT_TRUE(run(doc, "set volumes[0].density_texture.strength 0.5").ok());
+    ASSERT_TRUE(run(doc, "set volumes[0].edge_fade 0.2").ok());
+    EXPECT_TRUE(doc.scene().volumes[0].density_texture->density) << "other edits keep the loaded texture";
+    EXPECT_FALSE(run(doc, "set volumes[0].density_texture.file missing.vdb").ok());
+    EXPECT_EQ(doc.scene().volumes[0].density_texture->file, "mist.vdb");
 }

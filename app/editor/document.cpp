@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <optional>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -105,6 +106,20 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
             if (!load) return Error{"edit: volumes[" + std::to_string(i) + "].file: " + load.error().message};
             v.density = load.value().grid;
         }
+    }
+    // Density textures likewise: kept while file and grid stay, read again when an edit changes them.
+    for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) {
+        std::optional<DensityTexture>& t = n.volumes[i].density_texture;
+        const std::optional<DensityTexture>& was = current.volumes[i].density_texture;
+        if (!t) continue;
+        if (was && was->density && t->file == was->file && t->grid == was->grid) {
+            t->density = was->density;
+            t->mean = was->mean;
+            continue;
+        }
+        std::vector<std::string> warnings;
+        Result<void> load = loadDensityTexture(*t, n, "edit", i, VdbImportOptions{}.memoryLimitBytes, warnings);
+        if (!load) return load.error();
     }
     for (size_t i = 0; i < n.lights.size() && i < current.lights.size(); ++i) n.lights[i].hidden = current.lights[i].hidden;
     for (size_t i = 0; i < n.geometry.size() && i < current.geometry.size(); ++i) n.geometry[i].hidden = current.geometry[i].hidden;
