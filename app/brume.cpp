@@ -9,6 +9,7 @@
 #include "bench_command.h"
 #include "command.h"
 #include "info_commands.h"
+#include "noise_command.h"
 #include "render_command.h"
 #include "vdb_command.h"
 
@@ -47,10 +48,12 @@ int run(int argc, char** argv) {
     CLI::App* benchCmd = addBenchCommand(app, bench);
     InfoOptions info;
     CLI::App* infoCmd = addInfoCommand(app, info);
+    NoiseOptions noise;
+    CLI::App* noiseCmd = addNoiseCommand(app, noise);
     // CLI11 would answer both with "A subcommand is required"; say what is expected instead.
-    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench or info (see brume --help)."));
+    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, info or noise (see brume --help)."));
     if (argv[1][0] != '-' && !hasSubcommand(app, argv[1])) {
-        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench or info."));
+        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, info or noise."));
     }
     try {
         app.parse(argc, argv);
@@ -65,7 +68,8 @@ int run(int argc, char** argv) {
     if (*settingsCmd) return finish(runSettings(settings));
     if (*benchCmd) return finish(runBench(bench));
     if (*infoCmd) return finish(runInfo(info));
-    return finish(badInput("no command given; expected render, validate, settings, bench or info (see brume --help)."));
+    if (*noiseCmd) return finish(runNoise(noise));
+    return finish(badInput("no command given; expected render, validate, settings, bench, info or noise (see brume --help)."));
 }
 
 }  // namespace

@@ -135,6 +135,12 @@ inline constexpr Setting cli_fps          {"--fps", K::Number, "1/s", 1e-3, 1000
 // brume-editor options.
 inline constexpr Setting editor_autosave_seconds {"--autosave-seconds", K::Number, "s", 0.1, 3600, {5}, "", "Longest time unsaved changes wait before the editor writes them to its recovery file."};
 inline constexpr Setting cli_vdb_memory   {"--vdb-memory-mb", K::Integer, "MiB", 1, 1048576, {4096}, "", "Largest OpenVDB grid accepted, in memory and as NanoVDB (GPU); bigger grids are refused."};
+// brume noise options.
+inline constexpr Setting noise_size       {"--size", K::Integer, "voxels", 8, 256, {64}, "", "Voxels per side of the noise tile (the grid is size^3, every voxel active)."};
+inline constexpr Setting noise_octaves    {"--octaves", K::Integer, "", 1, 8, {4}, "", "fBm octaves: octave o has 2^o times the first octave's cells and half the previous octave's amplitude."};
+inline constexpr Setting noise_frequency  {"--frequency", K::Integer, "cells/tile", 1, 64, {4}, "", "Noise lattice cells per tile side in the first octave (an integer, so the tile is periodic)."};
+inline constexpr Setting noise_seed       {"--seed", K::Integer, "", 0, 999999, {1}, "", "Random seed: the same seed gives the same noise, another seed other noise."};
+inline constexpr Setting noise_grid       {"--grid", K::String, "", 0, 0, {0}, "", "Name of the grid written (the density_texture's grid key)."};
 inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};
 // clang-format on
 

@@ -346,8 +346,6 @@ Result<std::vector<VdbGridInfo>> inspectVdbInProcess(const std::string& path, co
     return out;
 }
 
-namespace {
-
 // The texture of volume i: its grid and the mean its strength is measured against.
 Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std::string& sceneFile, size_t i,
                                 uint64_t memoryLimitBytes, std::vector<std::string>& warnings) {
@@ -369,8 +367,6 @@ Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std
     t.mean = static_cast<float>(mean);
     return {};
 }
-
-}  // namespace
 
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,
                             std::vector<std::string>& warnings,

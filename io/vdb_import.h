@@ -65,6 +65,11 @@ Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path, const VdbIm
 // Files at least this large report reading progress (loadSceneGrids passes `progress` on for them).
 inline constexpr uint64_t kVdbProgressBytes = uint64_t(4) << 20;
 
+// Loads volume i's density texture: its grid and mean (file relative to scene.baseDir). Errors read
+// "SCENE: volumes[i].density_texture.file: ..." (or .grid: for a grid without positive values).
+Result<void> loadDensityTexture(DensityTexture& texture, const Scene& scene, const std::string& sceneFile, size_t i,
+                                uint64_t memoryLimitBytes, std::vector<std::string>& warnings);
+
 // Loads the grid of every vdb volume (file relative to scene.baseDir) into Volume::density.
 // Errors read "SCENE: volumes[i].file: what is wrong"; warnings go to `warnings`.
 // progress(file, fraction), for files of kVdbProgressBytes or more; optional.

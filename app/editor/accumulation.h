@@ -21,6 +21,9 @@ struct ViewKey {
     int height = 0;
     int debugView = 0;  // DebugViewState (debug_view.h): another slice is another image
     int debugSlice = 0;
+    // Scene time (scene_time.h): a moving time restarts the count, so the view keeps rendering while
+    // a texture scrolls; the GPU history is kept and its neighbourhood clamp follows the drift.
+    double time = 0.0;
     bool operator==(const ViewKey&) const = default;
 };
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <filesystem>
+#include <optional>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -106,6 +107,20 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
             v.density = load.value().grid;
         }
     }
+    // Density textures likewise: kept while file and grid stay, read again when an edit changes them.
+    for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) {
+        std::optional<DensityTexture>& t = n.volumes[i].density_texture;
+        const std::optional<DensityTexture>& was = current.volumes[i].density_texture;
+        if (!t) continue;
+        if (was && was->density && t->file == was->file && t->grid == was->grid) {
+            t->density = was->density;
+            t->mean = was->mean;
+            continue;
+        }
+        std::vector<std::string> warnings;
+        Result<void> load = loadDensityTexture(*t, n, "edit", i, VdbImportOptions{}.memoryLimitBytes, warnings);
+        if (!load) return load.error();
+    }
     for (size_t i = 0; i < n.lights.size() && i < current.lights.size(); ++i) n.lights[i].hidden = current.lights[i].hidden;
     for (size_t i = 0; i < n.geometry.size() && i < current.geometry.size(); ++i) n.geometry[i].hidden = current.geometry[i].hidden;
     return s;
@@ -197,6 +212,13 @@ Result<void> Document::add(const std::vector<std::string>& a) {
         else if (a[1] == "depth") v.type = VolumeType::Depth;
         else if (a[1] == "vdb" && a.size() == 4) v.type = VolumeType::Vdb, v.file = a[3];
         else return Error{"\"" + a[1] + "\" is not a volume type to add: use box, height, depth or vdb NAME FILE."};
+        // A vdb volume arrives with its grid, as `import vdb` does; a file that cannot be read refuses the add.
+        if (v.type == VolumeType::Vdb) {
+            const std::filesystem::path p(v.file);
+            Result<VdbLoad> load = loadVdbDensity((p.is_absolute() ? p : std::filesystem::path(next.baseDir) / p).string(), {});
+            if (!load) return Error{"add volume vdb: " + load.error().message};
+            v.density = load.value().grid;
+        }
         v.name = name;
         next.volumes.push_back(v);
     } else if (a[0] == "light") {

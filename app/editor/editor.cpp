@@ -97,6 +97,7 @@ Result<void> Editor::dispatch(const Action& a) {
         screenshotRequest = a.args[0];
         return {};
     }
+    if (a.verb == "time" || a.verb == "play") return timeAction(a);
     if (a.verb == "quit") return quitRequested = true, Result<void>();
     if (a.verb == "gizmo") {
         const std::string m = a.args.size() == 1 ? a.args[0] : "";
@@ -105,6 +106,20 @@ Result<void> Editor::dispatch(const Action& a) {
         return {};
     }
     return Error{"Unknown action \"" + a.verb + "\"."};
+}
+
+// time SECONDS, play on|off: view state, so no undo step and nothing for the document to save.
+Result<void> Editor::timeAction(const Action& a) {
+    double t = 0.0;
+    if (a.verb == "time") {
+        if (a.args.size() != 1 || !number(a.args[0], t) || std::abs(t) > 1.0e6)
+            return Error{"time takes a number of seconds (-1e6..1e6)."};
+        time_.set(t);
+        return {};
+    }
+    if (a.args.size() != 1 || (a.args[0] != "on" && a.args[0] != "off")) return Error{"play takes: play on|off."};
+    time_.play(a.args[0] == "on");
+    return {};
 }
 
 // New and Open start a new document: nothing selected, the autosave beside the new file. An
@@ -219,7 +234,7 @@ Result<void> Editor::viewAction(const Action& a) {
 }
 
 Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
-    const ViewKey key{doc_.revision(), quality_, width, height, debug_.view, debug_.slice};
+    const ViewKey key{doc_.revision(), quality_, width, height, debug_.view, debug_.slice, time_.seconds()};
     if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
     RenderRequest request;
     request.width = width;
@@ -228,7 +243,9 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     request.history = HistoryMode::Continue;
     request.debugView = debug_.view;
     request.debugSlice = debug_.slice;
-    Result<gpu::GpuRender> out = renderer.render(visibleScene(doc_.scene()), request);
+    Scene shown = visibleScene(doc_.scene());
+    shown.time_s = static_cast<float>(time_.seconds());
+    Result<gpu::GpuRender> out = renderer.render(shown, request);
     accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
     if (!out) return out.error();
     viewport_.width = width;

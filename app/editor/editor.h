@@ -17,6 +17,7 @@
 #include "gizmo_math.h"
 #include "gpu/gpu_renderer.h"
 #include "presenter.h"
+#include "scene_time.h"
 
 namespace brume::editor {
 
@@ -45,6 +46,7 @@ public:
     //   debug ... (the viewport's debug view, debug_view.h)
     //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
     //   gizmo translate|rotate|scale (the gizmo's mode: W / E / R)
+    //   time SECONDS, play on|off   (the view's scene time and its clock; scene_time.h)
     //   new [--discard], open PATH [--discard], import vdb PATH   (files.h; Save goes on to Document)
     //   drop PATH...   (files dropped on the window: a .vdb is imported, a .json opened, after the
     //                  unsaved-changes prompt; failures become notifications, never a script error)
@@ -58,6 +60,7 @@ public:
     Selection& selection() { return selection_; }
     Quality quality() const { return quality_; }
     DebugViewState& debugView() { return debug_; }
+    SceneTime& sceneTime() { return time_; }
 
     // Renders when the document, quality or size changed since the last render, or while the
     // temporal accumulation of a resting view has not converged (or always with `force`), with the
@@ -88,6 +91,7 @@ private:
     Result<void> viewAction(const Action& a);
     Result<void> setCamera(const Camera& c);
     Result<void> fileAction(const Action& a);
+    Result<void> timeAction(const Action& a);
     void drop(const std::string& path);
 
     Document doc_;
@@ -96,6 +100,7 @@ private:
     Selection selection_;
     Quality quality_;
     DebugViewState debug_;
+    SceneTime time_{true};
     Rgba8 viewport_;
     std::optional<gpu::GpuRender> last_;
     Accumulation accumulation_;

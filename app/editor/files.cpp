@@ -114,6 +114,12 @@ Result<OpenedScene> openSceneFile(const std::string& path) {
     OpenedScene out{std::move(s.value()), absolutePath(path), {}};
     for (size_t i = 0; i < out.scene.volumes.size(); ++i) {
         Volume& v = out.scene.volumes[i];
+        // A texture that cannot be read leaves the volume plain (an unloaded texture modulates nothing).
+        if (v.density_texture) {
+            Result<void> t = loadDensityTexture(*v.density_texture, out.scene, path, i, VdbImportOptions{}.memoryLimitBytes,
+                                                out.warnings);
+            if (!t) out.warnings.push_back(t.error().message + " The texture is left out.");
+        }
         if (v.type != VolumeType::Vdb) continue;
         fs::path p(v.file);
         if (p.is_relative()) p = fs::path(out.scene.baseDir) / p;

@@ -165,7 +165,10 @@ void offerRecovery(Editor& editor, UiState& ui, const Options& o, double now) {
 int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuRenderer& renderer, Script& script) {
     UiState ui;
     offerRecovery(editor, ui, o, seconds());
-    double frameStart = seconds(), totalMs = 0.0;
+    // Scripted and screenshot runs get a frame-count clock that starts paused (scene_time.h).
+    const bool fixedClock = !o.script.empty() || !o.screenshot.empty() || o.frames > 0;
+    if (fixedClock) editor.sceneTime().play(false);
+    double frameStart = seconds(), totalMs = 0.0, lastNow = seconds();
     int frame = 0;
     std::string shownTitle;
     while (true) {
@@ -182,6 +185,8 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             ui.closeRequested = true;
         }
         if (Result<void> r = stepScript(script, editor, now); !r) return fail(r.error().message, 2);
+        editor.sceneTime().advance(editor.doc().scene(), fixedClock ? kScriptedFrameSeconds : now - lastNow);
+        lastNow = now;
         presenter.newFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();

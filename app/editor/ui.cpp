@@ -224,6 +224,17 @@ void outliner(Editor& e, double now) {
     ImGui::End();
 }
 
+// Play/Pause and the scene time: density textures scroll with it (view state, not saved).
+void sceneTimeRow(Editor& e, double now) {
+    SceneTime& t = e.sceneTime();
+    if (ImGui::Button(t.playing() ? "Pause" : "Play")) runOrNotify(e, t.playing() ? "play off" : "play on", now);
+    ImGui::SameLine();
+    if (ImGui::Button("0")) runOrNotify(e, "time 0", now);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Back to scene time 0.");
+    ImGui::SameLine();
+    ImGui::Text("time %.2f s%s", t.seconds(), sceneScrolls(e.doc().scene()) ? "" : " (nothing scrolls)");
+}
+
 void stats(Editor& e, UiState& ui, double now) {
     if (!ui.showStats) return;
     ImGui::SetNextWindowPos(ImVec2(10, 340), ImGuiCond_FirstUseEver);
@@ -234,6 +245,7 @@ void stats(Editor& e, UiState& ui, double now) {
     if (ImGui::Combo("quality", &q, names, 4)) runOrNotify(e, std::string("quality ") + names[q], now);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Froxel preset of the viewport (docs/quality.md); not saved in the scene.");
     ImGui::Text("frame %.1f ms", e.frameMs);
+    sceneTimeRow(e, now);
     const int converged = convergedFrames(e.doc().scene());
     ImGui::Text("temporal %d / %d frames%s", std::min(e.accumulation().frames(), converged), converged,
                 e.accumulation().frames() >= converged ? " (converged)" : "");
