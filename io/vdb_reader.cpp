@@ -135,7 +135,8 @@ json runLoad(const std::string& file, const std::string& grid, uint64_t limit, c
     Result<VdbLoad> r = loadVdbDensityInProcess(file, options);
     if (!r) return {{"ok", false}, {"error", r.error().message}};
     const DensityGrid& g = *r.value().grid;
-    if (!writeFile(dir / "grid.nvdb", g.data(), g.size()))
+    // The NanoVDB grid alone: the parent builds the occupancy cells that DensityGrid appends again.
+    if (!writeFile(dir / "grid.nvdb", g.data(), g.nanoVdbSize()))
         return {{"ok", false}, {"error", file + ": cannot write the converted grid to " + dir.string() + "."}};
     return {{"ok", true}, {"grid_name", r.value().gridName}, {"warnings", r.value().warnings}};
 }
