@@ -3,6 +3,8 @@
 // are absent), and the CPU froxel renderer's image is the unculled one.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,13 +21,7 @@ namespace {
 constexpr int kWidth = 160;
 constexpr int kHeight = 90;
 
-Light point(vec3 p, float range) {
-    Light l = makeLight(LightType::Point);
-    l.position = p;
-    l.range = range;
-    l.intensity = 20.0f;
-    return l;
-}
+Light point(vec3 p, float range) { return test::pointLight(p, range, 20.0f); }
 
 Light spot(vec3 p, vec3 dir, float outerDeg, float range) {
     Light l = makeLight(LightType::Spot);
@@ -41,20 +37,7 @@ Light spot(vec3 p, vec3 dir, float outerDeg, float range) {
 // Camera at z = 6 looking toward -z; fog everywhere below 3 m and a box; lights of every kind,
 // some that reach the fog and some that cannot.
 Scene clusterScene() {
-    Scene s;
-    s.camera.position = {0.0f, 1.5f, 6.0f};
-    s.camera.target = {0.0f, 0.5f, 0.0f};
-    s.camera.far = 40.0f;
-    s.froxels.tile_px = 8;
-    s.froxels.slices = 48;
-    s.froxels.far = 30.0f;
-    Volume fog;
-    fog.type = VolumeType::Height;
-    fog.profile = HeightProfile::Exponential;
-    fog.base_height = 0.5f;
-    fog.falloff = 0.5f;
-    fog.medium.scattering = {0.2f, 0.2f, 0.25f};
-    s.volumes = {fog};
+    Scene s = test::heightFogView(30.0f, 0.5f, {0.2f, 0.2f, 0.25f});
     Light sun = makeLight(LightType::Directional);
     sun.direction = glm::normalize(vec3(0.3f, -1.0f, -0.4f));
     sun.shadows = false;

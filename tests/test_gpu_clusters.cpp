@@ -3,6 +3,8 @@
 // tests' 1% and with the GPU's own unculled image to float noise. Validation must stay silent.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cstdio>
 
 #include "core/render.h"
@@ -16,20 +18,8 @@ namespace {
 // Height fog, a sun, and a ring of 24 short-range point lights of which the first 4 sit in the fog
 // in view and the rest far out of reach (the benchmark's shape, scaled down).
 Scene manyLights() {
-    Scene s;
-    s.camera.position = {0.0f, 1.5f, 6.0f};
-    s.camera.target = {0.0f, 0.5f, 0.0f};
-    s.camera.far = 40.0f;
-    s.froxels.tile_px = 8;
-    s.froxels.slices = 48;
-    s.froxels.far = 30.0f;
-    Volume fog;
-    fog.type = VolumeType::Height;
-    fog.base_height = 0.5f;
-    fog.falloff = 0.6f;
-    fog.medium.scattering = {0.2f, 0.22f, 0.25f};
-    fog.medium.phase_g = 0.3f;
-    s.volumes = {fog};
+    Scene s = test::heightFogView(30.0f, 0.6f, {0.2f, 0.22f, 0.25f});
+    s.volumes[0].medium.phase_g = 0.3f;
     Light sun = makeLight(LightType::Directional);
     sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
     sun.shadows = false;

@@ -3,6 +3,8 @@
 // layers are computed for the lights that touch something only; neither changes the image.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -15,30 +17,12 @@ using glm::vec3;
 
 namespace {
 
-Light point(vec3 p, float range) {
-    Light l = makeLight(LightType::Point);
-    l.position = p;
-    l.range = range;
-    l.intensity = 20.0f;
-    return l;
-}
+Light point(vec3 p, float range) { return test::pointLight(p, range, 20.0f); }
 
 // Camera at z = 6 looking toward -z over a floor in height fog; lights in view, beside it, behind
 // it and past its far plane, one for surfaces only (fog_scale 0) and one dark.
 Scene reachScene() {
-    Scene s;
-    s.camera.position = {0.0f, 1.5f, 6.0f};
-    s.camera.target = {0.0f, 0.5f, 0.0f};
-    s.camera.far = 40.0f;
-    s.froxels.tile_px = 8;
-    s.froxels.slices = 48;
-    s.froxels.far = 20.0f;
-    Volume fog;
-    fog.type = VolumeType::Height;
-    fog.base_height = 0.5f;
-    fog.falloff = 0.5f;
-    fog.medium.scattering = {0.2f, 0.2f, 0.25f};
-    s.volumes = {fog};
+    Scene s = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.25f});
     Geometry floor;
     floor.type = GeometryType::Plane;
     floor.albedo = vec3(0.5f);

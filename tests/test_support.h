@@ -67,4 +67,33 @@ inline Scene sceneWithTestView() {
     return s;
 }
 
+// A point light at p with the given range [m] and intensity.
+inline Light pointLight(glm::vec3 p, float range, float intensity) {
+    Light l = makeLight(LightType::Point);
+    l.position = p;
+    l.range = range;
+    l.intensity = intensity;
+    return l;
+}
+
+// The light-culling tests' view: 1.5 m up at z = 6 looking at (0, 0.5, 0), camera far 40 m, froxels
+// of 8 px and 48 slices up to froxelFar [m], in exponential height fog based at 0.5 m.
+inline Scene heightFogView(float froxelFar, float falloff, glm::vec3 scattering) {
+    Scene s;
+    s.camera.position = {0.0f, 1.5f, 6.0f};
+    s.camera.target = {0.0f, 0.5f, 0.0f};
+    s.camera.far = 40.0f;
+    s.froxels.tile_px = 8;
+    s.froxels.slices = 48;
+    s.froxels.far = froxelFar;
+    Volume fog;
+    fog.type = VolumeType::Height;
+    fog.profile = HeightProfile::Exponential;
+    fog.base_height = 0.5f;
+    fog.falloff = falloff;
+    fog.medium.scattering = scattering;
+    s.volumes = {fog};
+    return s;
+}
+
 }  // namespace brume::test
