@@ -17,11 +17,14 @@
 
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu_test_support.h"
 
 using namespace brume;
 using namespace brume::gpu;
 
 namespace {
+
+using test::asImage;
 
 constexpr double kTolerance = 0.01;
 
@@ -122,32 +125,14 @@ std::vector<Geometry> ground() {
 }
 
 // An Image view of one channel-triplet volume, so relativeMeanAbsError applies to it.
-Image asImage(const std::vector<glm::vec4>& v) {
-    Image img(static_cast<int>(v.size()), 1);
-    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
-    return img;
-}
-
 bool allFinite(const std::vector<glm::vec4>& v) {
     for (const glm::vec4& p : v)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w)) return false;
     return true;
 }
 
-class GpuTest : public ::testing::Test {
+class GpuTest : public test::ValidatedGpuTest {
 protected:
-    void SetUp() override {
-        GpuOptions options;
-        options.validation = true;
-        auto r = GpuRenderer::create(options);
-        ASSERT_TRUE(r.ok()) << r.error().message;
-        renderer = std::move(r.value());
-    }
-    void TearDown() override {
-        if (!renderer) return;
-        const std::vector<std::string> messages = renderer->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
 
     // Renders on both sides and checks agreement of the integrated volume and the image.
     void expectMatchesCpu(const Scene& scene, const char* what, Quality quality = Quality::High) {
@@ -177,7 +162,6 @@ protected:
                     imageErr);
     }
 
-    std::unique_ptr<GpuRenderer> renderer;
 };
 
 TEST_F(GpuTest, BoxVolumeLitBySunMatchesCpu) {

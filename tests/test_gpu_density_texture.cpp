@@ -12,6 +12,7 @@
 #include "core/compile.h"
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu_test_support.h"
 #include "io/vdb_import.h"
 #include "test_support.h"
 #include "vdb_test_util.h"
@@ -22,15 +23,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test::asImage;
+
 constexpr double kTolerance = 0.01;
 constexpr int kN = 16;
 constexpr double kTwoPi = 6.283185307179586;
-
-Image asImage(const std::vector<glm::vec4>& v) {
-    Image img(static_cast<int>(v.size()), 1);
-    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
-    return img;
-}
 
 DensityGridPtr loadGrid(const fs::path& file, const std::string& grid) {
     VdbImportOptions o;
@@ -50,14 +47,11 @@ DensityTexture texture(const DensityGridPtr& grid, float tile, float strength, g
     return t;
 }
 
-class GpuDensityTexture : public ::testing::Test {
+class GpuDensityTexture : public test::ValidatedGpuTest {
 protected:
     void SetUp() override {
-        GpuOptions options;
-        options.validation = true;
-        auto r = GpuRenderer::create(options);
-        ASSERT_TRUE(r.ok()) << r.error().message;
-        renderer = std::move(r.value());
+        ValidatedGpuTest::SetUp();
+        if (HasFatalFailure()) return;
         // A periodic field (a sine in x and in y + z) on [0, 15]^3, and a ball for a vdb volume.
         auto noise = test::makeGrid("noise", 0, kN - 1, [](openvdb::Coord c) {
             return static_cast<float>(1.0 + 0.6 * std::sin(kTwoPi * c.x() / kN) + 0.3 * std::sin(kTwoPi * (c.y() + c.z()) / kN));
@@ -69,11 +63,6 @@ protected:
         test::writeGrids(dir.path / "grids.vdb", {noise, ball});
         noiseGrid = loadGrid(dir.path / "grids.vdb", "noise");
         ballGrid = loadGrid(dir.path / "grids.vdb", "density");
-    }
-    void TearDown() override {
-        if (!renderer) return;
-        const std::vector<std::string> messages = renderer->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
     }
 
     // A textured box (and optionally a textured vdb ball) under the test view, sun and sky, at time t.
@@ -132,7 +121,6 @@ protected:
     }
 
     test::TempDir dir{"gpu_density_texture", ::testing::UnitTest::GetInstance()->current_test_info()->name()};
-    std::unique_ptr<GpuRenderer> renderer;
     DensityGridPtr noiseGrid, ballGrid;
 };
 

@@ -9,11 +9,14 @@
 
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu_test_support.h"
 
 using namespace brume;
 using namespace brume::gpu;
 
 namespace {
+
+using test::asImage;
 
 constexpr double kTolerance = 0.01;  // relative mean abs error, as for every GPU-vs-CPU test
 
@@ -53,12 +56,6 @@ Scene temporalScene() {
     ground.type = GeometryType::Plane;
     s.geometry = {ground};
     return s;
-}
-
-Image asImage(const std::vector<glm::vec4>& v) {
-    Image img(static_cast<int>(v.size()), 1);
-    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
-    return img;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "core/compile.h"
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu_test_support.h"
 #include "io/vdb_import.h"
 #include "test_support.h"
 #include "vdb_test_util.h"
@@ -20,13 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kTolerance = 0.01;
+using test::asImage;
 
-Image asImage(const std::vector<glm::vec4>& v) {
-    Image img(static_cast<int>(v.size()), 1);
-    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
-    return img;
-}
+constexpr double kTolerance = 0.01;
 
 // A 3 x 1 x 3 m block (0.1 m voxels) of a bumpy density, so that the march's sample points matter.
 DensityGridPtr bumpyBlock(const fs::path& dir) {
@@ -69,20 +66,8 @@ Scene blockScene(const DensityGridPtr& grid) {
     return s;
 }
 
-class GpuVdbShadow : public ::testing::Test {
+class GpuVdbShadow : public test::ValidatedGpuTest {
 protected:
-    void SetUp() override {
-        GpuOptions options;
-        options.validation = true;
-        auto r = GpuRenderer::create(options);
-        ASSERT_TRUE(r.ok()) << r.error().message;
-        renderer = std::move(r.value());
-    }
-    void TearDown() override {
-        if (!renderer) return;
-        const std::vector<std::string> messages = renderer->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
 
     // GPU vs CPU: the source (the light pass, which reads the vdb layer), integrated scattering and
     // the image (the ground reads it too); the CPU without vdb shadows must differ by far more.
@@ -115,7 +100,6 @@ protected:
         EXPECT_GT(share, 2.0 * kTolerance) << what << ": the vdb shadow barely shows, the test could not fail";
     }
 
-    std::unique_ptr<GpuRenderer> renderer;
 };
 
 }  // namespace
