@@ -3,6 +3,8 @@
 // help text. Images are 64x36 at low quality to keep each test well under a second or two.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,6 +25,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using brume::test::quoted;
+using brume::test::readText;
+
 const std::string kDefaultScene = std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json";
 const std::string kSmall = " --width 64 --height 36 --quality low";
 
@@ -31,19 +36,6 @@ struct CliRun {
     std::string out;
     std::string err;
 };
-
-std::string quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string readText(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
 
 void writeText(const fs::path& p, const std::string& text) {
     fs::create_directories(p.parent_path());

@@ -25,6 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using brume::test::readText;
+
 constexpr int kN = 16;          // voxels per tile and axis
 constexpr float kTile = 4.0f;   // tile_size_m
 constexpr double kTwoPi = 6.283185307179586;
@@ -89,11 +91,6 @@ double maxAbsDiff(const Image& a, const Image& b) {
     for (size_t i = 0; i < a.pixels.size(); ++i)
         m = std::max(m, static_cast<double>(glm::length(a.pixels[i] - b.pixels[i])));
     return m;
-}
-
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 class DensityTextureTest : public ::testing::Test {

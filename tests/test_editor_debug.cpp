@@ -2,6 +2,8 @@
 // after `debug density 12` equals `brume render --debug-view density --debug-slice 12`.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,6 +21,8 @@ using namespace brume;
 
 namespace {
 
+using brume::test::quoted;
+
 Result<void> debugAction(editor::DebugViewState& s, const std::string& line) {
     Result<editor::Action> a = editor::parseAction(line);
     if (!a) return a.error();
@@ -27,8 +31,6 @@ Result<void> debugAction(editor::DebugViewState& s, const std::string& line) {
 }
 
 const std::string kDefaultScene = std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json";
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // Runs a shell command; returns its exit code, with stdout+stderr in `log`.
 int sh(const std::string& cmd, std::string& log) {

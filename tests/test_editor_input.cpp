@@ -20,16 +20,10 @@ using namespace brume;
 
 namespace {
 
+using brume::test::quoted;
+using brume::test::readText;
+
 bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " > /dev/null 2>&1").c_str()) == 0; }
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::string readText(const fs::path& p) {
-    std::ifstream f(p);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
 
 // One unit fog box at the centre of the view, lit by the sun; no temporal accumulation, so the
 // editor renders once per edit and the input is handled at UI speed.

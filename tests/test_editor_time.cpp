@@ -4,6 +4,8 @@
 // fixed 1/24 s per frame of scripted runs. 160x90 at low quality, validation on.
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,7 +22,7 @@ using namespace brume;
 
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+using brume::test::quoted;
 
 std::string readBytes(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);

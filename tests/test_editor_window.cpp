@@ -4,6 +4,8 @@
 // Every run has the Vulkan validation layer on (--validation exits 1 on any message).
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,6 +28,9 @@ using namespace brume;
 
 namespace {
 
+using brume::test::quoted;
+using brume::test::readText;
+
 const std::string kDefaultScene = std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json";
 const std::string kXvfb = "xvfb-run -a -s '-screen 0 640x480x24' ";
 const std::string kSmall = " --width 160 --height 90 --quality low --validation";
@@ -34,15 +39,6 @@ bool haveXvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 
 
 #define REQUIRE_XVFB()                                                          \
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (apt-get install xvfb xauth): windowed editor tests skipped"
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::string readText(const fs::path& p) {
-    std::ifstream f(p);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
 
 // Runs a shell command; returns its exit code, with stdout+stderr in `log`.
 int sh(const std::string& cmd, std::string* log = nullptr) {

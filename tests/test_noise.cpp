@@ -25,23 +25,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using brume::test::quoted;
+using brume::test::readText;
+
 struct CliRun {
     int exitCode = -1;
     std::string out, err;
 };
-
-std::string quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-std::string readText(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
 
 // A tile read back with the OpenVDB API: n^3 values, x fastest.
 struct Tile {
