@@ -85,7 +85,8 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClus
             if (inScatter == vec3(0.0f)) continue;
             perSigmaS += inScatter * froxelFogTransmittance(cs, sv, v.frame, static_cast<int>(li), shadow, p,
                                                             ls.toLight, ls.distance) *
-                         sunShadowVisibility(sun, v.frame, static_cast<int>(li), p) * localShadowVisibility(local, l, p);
+                         sunShadowFroxelVisibility(sun, v.frame, static_cast<int>(li), p) *
+                         localShadowVisibility(local, l, p);
         }
         const vec3 sourceRgb = vec3(v.mediaScatteringG[i]) * perSigmaS + vec3(v.mediaEmission[i]);
         v.source[i] = vec4(sourceRgb, 0.0f);

@@ -34,6 +34,8 @@ public:
     SurfaceHit intersect(const Ray& ray, float tMax, float tMin = 0.0f) const;
     // Whether anything lies between `from` and `from + dir * maxDist` (dir unit).
     bool occluded(glm::vec3 from, glm::vec3 dir, float maxDist) const;
+    // Type of primitive `index` (SurfaceHit::index).
+    GeometryType type(int index) const { return prims_[static_cast<size_t>(index)].type; }
 
 private:
     struct Prim {

@@ -33,7 +33,8 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
     SunShadowMap map;
     if (frame.shadows.z <= 0) return map;
     map.fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.shadows.z - 1)], resolution);
-    map.depth.assign(static_cast<size_t>(resolution) * static_cast<size_t>(resolution), shd::BRUME_HUGE);
+    // Two layers: surfaces' second depths, then the froxels' (shared/sun_shadow.h).
+    map.depth.assign(2 * static_cast<size_t>(resolution) * static_cast<size_t>(resolution), shd::BRUME_HUGE);
     const glm::vec3 dir(map.fit.dir);
     // Rays end past the far side of the fitted sphere: nothing beyond can shadow the froxel range.
     const float tMax = shd::SUN_SHADOW_RAY_START + 2.0f * map.fit.centerRadius.w;
@@ -44,9 +45,12 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
             if (!first.hit()) continue;
             // The second surface: where the ray leaves the first solid (shared/sun_shadow.h).
             const SurfaceHit second = geometry.intersect(ray, tMax, first.t + kSecondDepthGap);
-            if (second.hit())
-                map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, glm::ivec2(i, j)))] =
-                    second.t - shd::SUN_SHADOW_RAY_START;
+            if (!second.hit()) continue;
+            const glm::ivec2 texel(i, j);
+            map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, texel))] = second.t - shd::SUN_SHADOW_RAY_START;
+            const bool plane = geometry.type(first.index) == GeometryType::Plane;
+            map.depth[static_cast<size_t>(shd::sunShadowFroxelIndex(map.fit, texel))] =
+                (plane ? second.t : first.t) - shd::SUN_SHADOW_RAY_START;
         }
     });
     return map;
@@ -69,14 +73,29 @@ const SunShadowMap& SunShadowCache::get(const CompiledScene& cs, const std::vect
     return map_;
 }
 
-float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p) {
+namespace {
+
+// PCF over one layer of the map (0: surfaces, 1: froxels).
+float visibilityInLayer(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p, bool froxels) {
     if (!shd::sunShadowMapped(frame, light) || map.depth.empty()) return 1.0f;
     const shd::SunShadowLookup k = shd::sunShadowLookup(map.fit, p);
     if (!k.inside) return 1.0f;
     auto at = [&](int dx, int dy) {
-        return map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, k.texel + glm::ivec2(dx, dy)))];
+        const glm::ivec2 texel = k.texel + glm::ivec2(dx, dy);
+        return map.depth[static_cast<size_t>(froxels ? shd::sunShadowFroxelIndex(map.fit, texel)
+                                                     : shd::sunShadowIndex(map.fit, texel))];
     };
     return shd::sunShadowPcf(k, at(0, 0), at(1, 0), at(0, 1), at(1, 1));
+}
+
+}  // namespace
+
+float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p) {
+    return visibilityInLayer(map, frame, light, p, false);
+}
+
+float sunShadowFroxelVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p) {
+    return visibilityInLayer(map, frame, light, p, true);
 }
 
 }  // namespace brume

@@ -19,7 +19,7 @@ int sunShadowLight(const CompiledScene& cs);
 
 struct SunShadowMap {
     shd::SunShadowFit fit{};
-    std::vector<float> depth;  // N x N, row-major (shd::sunShadowIndex); empty: no mapped light
+    std::vector<float> depth;  // 2 layers of N x N, row-major (shd::sunShadowIndex, shd::sunShadowFroxelIndex); empty: none
 };
 
 // Sets frame.shadows.z (the mapped light) for the scene: call after applyShadowSettings.
@@ -47,5 +47,9 @@ private:
 
 // Visibility of light `light` at p through the map: 1 for lights the map does not serve.
 float sunShadowVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p);
+
+// The same for a froxel's sample point (the light pass): the map's froxel layer, which shadows the
+// fog inside solids (shared/sun_shadow.h).
+float sunShadowFroxelVisibility(const SunShadowMap& map, const shd::FrameUniforms& frame, int light, glm::vec3 p);
 
 }  // namespace brume

@@ -38,8 +38,8 @@ void main() {
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
-        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance) * sunShadowVisibility(i, p) *
-                     localShadowVisibility(i, p);
+        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance) *
+                     sunShadowFroxelVisibility(i, p) * localShadowVisibility(i, p);
     }
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));

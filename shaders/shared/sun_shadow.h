@@ -13,6 +13,13 @@
 // camera ray reaches; a sun below the horizon still lights fog above the ground, see docs).
 // Sampled with bilinear PCF: the 2x2 texels around a point, each compared with the point's depth,
 // blended with bilinear weights.
+// The map holds a second layer of N x N depths for the froxels (sunShadowFroxelIndex): where the
+// texel ray enters a solid, the depth of that FIRST surface (else as the first layer). Fog inside a
+// solid is never seen, but a froxel straddling a solid's face blends its sample into the pixels that
+// look at that face: lit by the second-depth layer, the fog inside the roof of a light-shaft scene
+// brightened the pixels looking up at the roof's underside (docs/shadows.md, "Shaft error").
+// Surfaces keep the second-depth layer (no acne); planes stay second-depth in both (no back: fog
+// under a sunlit ground stays lit, so the froxels straddling the ground do not darken it).
 #ifndef BRUME_SHARED_SUN_SHADOW_H
 #define BRUME_SHARED_SUN_SHADOW_H
 
@@ -87,6 +94,12 @@ BRUME_FUNC int sunShadowIndex(SunShadowFit s, ivec2 texel) {
     int n = int(s.right.w);
     ivec2 c = clamp(texel, ivec2(0), ivec2(n - 1));
     return c.y * n + c.x;
+}
+
+// Index into the froxels' layer (first surface of a solid; see the top of this file).
+BRUME_FUNC int sunShadowFroxelIndex(SunShadowFit s, ivec2 texel) {
+    int n = int(s.right.w);
+    return n * n + sunShadowIndex(s, texel);
 }
 
 // Bilinear PCF: the fraction of the 2x2 footprint that sees the light (1 lit, 0 shadowed).
