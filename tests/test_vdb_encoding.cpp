@@ -222,3 +222,24 @@ TEST(VdbEncoding, BadEncodingExitsWithCodeTwoAndOneSentence) {
     EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
     EXPECT_NE(text.find("volumes[0].encoding: unknown choice \"half\""), std::string::npos) << text;
 }
+
+// The key reaches the grid: a scene file's vdb volumes load in the encoding they name.
+TEST(VdbEncoding, SceneGridsLoadInTheirEncoding) {
+    test::TempDir dir("vdb_encoding", "scene");
+    test::writeGrids(dir.path / "cube.vdb", {test::makeGrid("density", 0, 15, [](openvdb::Coord c) {
+        return 0.5f + 0.03f * static_cast<float>(c.x());
+    }, openvdb::math::Transform::createLinearTransform(0.1))});
+    for (const char* e : {"float", "fp16", "fp8"}) {
+        Result<Scene> s = parseVdbScene(R"({"type": "vdb", "file": "cube.vdb", "encoding": ")" + std::string(e) +
+                                        R"("}, {"type": "vdb", "file": "cube.vdb", "encoding": ")" + e + "\"}");
+        ASSERT_TRUE(s.ok()) << s.error().message;
+        s.value().baseDir = dir.path.string();
+        std::vector<std::string> warnings;
+        Result<void> r = loadSceneGrids(s.value(), "s.json", VdbImportOptions{}.memoryLimitBytes, warnings);
+        ASSERT_TRUE(r.ok()) << r.error().message;
+        for (const Volume& v : s.value().volumes) {
+            ASSERT_TRUE(v.density);
+            EXPECT_STREQ(toString(v.density->encoding()), e);
+        }
+    }
+}
