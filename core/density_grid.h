@@ -18,10 +18,17 @@ class Grid;
 
 namespace brume {
 
+// How a grid's voxel values are stored (docs/vdb.md "Encodings"): 32-bit floats, or quantized per
+// 8^3 leaf between the leaf's minimum and maximum with 16 or 8 bits a voxel (NanoVDB Fp16 / Fp8).
+// The order is the scene format's ("float|fp16|fp8", core/settings.h volume_encoding).
+enum class VdbEncoding { Float, Fp16, Fp8 };
+const char* toString(VdbEncoding e);
+
 class DensityGrid {
 public:
-    // bytes: a NanoVDB buffer holding one float grid (nanovdb::NanoGrid<float>). Values must already be
-    // finite and >= 0 (the importer sanitizes them).
+    // bytes: a NanoVDB buffer holding one grid of float, Fp16 or Fp8 values (nanovdb::NanoGrid<float>,
+    // <Fp16>, <Fp8>; io/vdb_encoding.h converts). Values must already be finite and >= 0 (the importer
+    // sanitizes them).
     explicit DensityGrid(const void* bytes, size_t size);
 
     // The raw NanoVDB buffer followed by the occupancy cells (what the GPU uploads); size is a
@@ -47,6 +54,7 @@ public:
     double activeBoxMean() const;
 
     bool empty() const { return empty_; }
+    VdbEncoding encoding() const { return encoding_; }
     // Active voxels' index bounding box, grown by one voxel (trilinear support); empty() when none.
     glm::vec3 indexMin() const { return indexMin_; }
     glm::vec3 indexMax() const { return indexMax_; }
@@ -59,12 +67,20 @@ private:
         std::byte b[32];
     };
     void buildOccupancy();
+    // Calls f with the grid as the NanoGrid of its encoding (every reader goes through here).
+    template <class F>
+    auto visit(F&& f) const;
+    template <class GridT>
+    void readHeader(const GridT& grid);
+    template <class GridT>
+    static std::vector<uint32_t> occupancyWords(const GridT& grid);
 
     std::vector<Block> storage_;
     size_t size_ = 0;
     size_t nanoVdbSize_ = 0;
     size_t occupancyOffset_ = 0;
     bool empty_ = true;
+    VdbEncoding encoding_ = VdbEncoding::Float;
     glm::vec3 indexMin_{0.0f}, indexMax_{0.0f};
     glm::mat4 gridFromIndex_{1.0f};
     uint64_t activeVoxels_ = 0;

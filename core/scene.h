@@ -130,6 +130,7 @@ struct Volume {
     float start_distance = settings::volume_start_distance.f();            // depth
     std::string file;                                          // vdb, as written in the scene
     std::string grid = "density";                              // vdb
+    VdbEncoding encoding = VdbEncoding::Float;                 // vdb, the same for all of a scene's
     float density_scale = settings::volume_density_scale.f();  // vdb
     // vdb: the grid read from `file` by io/vdb_import.h (loadSceneGrids); not serialized. Null until
     // loaded: an unloaded vdb volume is empty.

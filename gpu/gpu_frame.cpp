@@ -209,7 +209,7 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
 
     // First: the light pass and the surfaces of the geometry pass read it.
     timer.begin(cmd, "shadow volume");
-    recordShadowVolume(cmd, frameHasVdbVolumes ? shadowVolumeVdb : shadowVolume, bindings, res.shadowExtent);
+    recordShadowVolume(cmd, shadowVolumeVariant(), bindings, res.shadowExtent);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     timer.end(cmd);

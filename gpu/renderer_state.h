@@ -35,6 +35,11 @@ struct GpuRenderer::State {
     // index: the scene has vdb volumes (0/1).
     std::array<ComputePass, 2> voxelizeTexture;
     bool frameHasVdbVolumes = false, frameHasTextures = false;  // this frame's voxelize variant
+    // The vdb passes compiled for quantized grids (shaders/vdb_sample.glsl), created when a scene
+    // first needs them; first index: encoding Fp16 (0) or Fp8 (1); voxelize's second: density textures.
+    std::array<std::array<ComputePass, 2>, 2> voxelizeVdbQuantized;
+    std::array<ComputePass, 2> shadowVolumeVdbQuantized;
+    VdbEncoding frameVdbEncoding = VdbEncoding::Float;  // of every vdb volume this frame
     ComputePass debugView;
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
@@ -53,7 +58,9 @@ struct GpuRenderer::State {
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
     Result<void> chooseVoxelizeVariant(const CompiledScene& cs);
+    Result<void> chooseVdbEncoding(const CompiledScene& cs);
     const ComputePass& voxelizeVariant() const;
+    const ComputePass& shadowVolumeVariant() const;
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes);
     void recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,

@@ -418,8 +418,8 @@ bool checkVolumeKeys(Ctx& c, const json& v, const std::string& path, VolumeType 
             return checkObject(c, v, path, {"type", "name", "visibility_distance", "start_distance", "density_texture", "medium"},
                                "a depth volume");
         case VolumeType::Vdb:
-            return checkObject(c, v, path, {"type", "name", "file", "grid", "transform", "density_scale", "density_texture",
-                                "medium"},
+            return checkObject(c, v, path, {"type", "name", "file", "grid", "encoding", "transform", "density_scale",
+                                "density_texture", "medium"},
                                "a vdb volume");
     }
     return false;
@@ -434,6 +434,25 @@ void readVdbFile(Ctx& c, const json& v, const std::string& path, Volume& vol) {
     if (!c.failed() && vol.file.empty()) c.fail(child(path, "file"), "must not be empty");
     readString(c, v, path, st::volume_grid, vol.grid);
     if (!c.failed() && vol.grid.empty()) c.fail(child(path, "grid"), "must not be empty");
+    readEnum<VdbEncoding, 3>(c, v, path, st::volume_encoding, vol.encoding);
+}
+
+// The GPU samples all vdb volumes of a frame with one shader variant, compiled for one encoding
+// (docs/vdb.md "Encodings"), so a scene's vdb volumes share one: the first one's.
+void checkOneEncoding(Ctx& c, const std::vector<Volume>& volumes) {
+    const Volume* first = nullptr;
+    size_t firstIndex = 0;
+    for (size_t i = 0; i < volumes.size() && !c.failed(); ++i) {
+        if (volumes[i].type != VolumeType::Vdb) continue;
+        if (!first) {
+            first = &volumes[i];
+            firstIndex = i;
+        } else if (volumes[i].encoding != first->encoding) {
+            c.fail("volumes[" + std::to_string(i) + "].encoding",
+                   "is \"" + std::string(toString(volumes[i].encoding)) + "\" but volumes[" + std::to_string(firstIndex) +
+                       "] is \"" + toString(first->encoding) + "\"; all vdb volumes of a scene must use the same encoding");
+        }
+    }
 }
 
 void readDensityTexture(Ctx& c, const json& v, const std::string& volumePath, Volume& vol) {
@@ -635,6 +654,7 @@ void readScene(Ctx& c, const json& root, Scene& s) {
     readVec3(c, root, "", st::ambient, s.ambient);
     if (const json* v = findKey(root, "lights")) readList(c, *v, "lights", s.lights, readLight);
     if (const json* v = findKey(root, "volumes")) readList(c, *v, "volumes", s.volumes, readVolume);
+    checkOneEncoding(c, s.volumes);
     if (const json* v = findKey(root, "geometry")) readList(c, *v, "geometry", s.geometry, readGeometry);
 }
 
@@ -750,6 +770,7 @@ ojson volumeJson(const Volume& v) {
         case VolumeType::Vdb:
             j["file"] = v.file;
             j["grid"] = v.grid;
+            j["encoding"] = toString(v.encoding);
             j["transform"] = transformJson(v.transform);
             j["density_scale"] = num(v.density_scale);
             break;

@@ -382,6 +382,7 @@ Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t
         if (p.is_relative()) p = fs::path(scene.baseDir) / p;
         VdbImportOptions options;
         options.grid = v.grid;
+        options.encoding = v.encoding;
         options.memoryLimitBytes = memoryLimitBytes;
         const std::string path = p.lexically_normal().string();
         std::error_code ec;

@@ -25,6 +25,8 @@ struct VdbImportOptions {
     // (0-based) of several grids with that name.
     std::string grid = "density";
     uint64_t memoryLimitBytes = uint64_t(4096) << 20;
+    // The grid handed back is re-encoded so (io/vdb_encoding.h); density textures stay float.
+    VdbEncoding encoding = VdbEncoding::Float;
     // Status lines for large files ("reading ...", "converting ..."); optional. In-process reads only.
     std::function<void(const std::string&)> status;
     // Fraction of the file read so far (0..1), reported by the reader process; optional.

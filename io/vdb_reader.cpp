@@ -1,6 +1,7 @@
 // Both sides of the isolated reader (io/vdb_reader.h): the child's main and the parent's spawn, wait
 // and decode. The child runs the in-process import (io/vdb_inprocess.h); only bytes and JSON cross.
 #include "vdb_reader.h"
+#include "vdb_encoding.h"
 
 #include <algorithm>
 #include <chrono>
@@ -318,6 +319,8 @@ Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& 
                                       dir.path().string()}, dir.path(), options);
     if (!r) return r.error();
     Result<DensityGridPtr> grid = mapGrid(path, dir.path() / "grid.nvdb");
+    if (!grid) return grid.error();
+    grid = encodeDensityGrid(grid.value(), options.encoding, path);
     if (!grid) return grid.error();
     VdbLoad load;
     load.grid = grid.value();

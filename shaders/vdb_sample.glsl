@@ -7,9 +7,28 @@ layout(std430, set = 0, binding = BINDING_VDB_GRIDS) readonly buffer VdbGridBloc
 #define pnanovdb_buf_data vdbGridWords
 #include "nanovdb/PNanoVDB.h"
 
+// One encoding per compiled variant (docs/vdb.md "Encodings"): shaders/CMakeLists.txt builds the vdb
+// shaders again with BRUME_VDB_FP16 or BRUME_VDB_FP8 defined. A runtime branch on the grid type
+// would cost every scene on lavapipe, which runs the untaken side too. A quantized grid stores its
+// tiles and background as floats; only leaf voxels are decoded (core: NanoGrid<Fp16|Fp8> accessors).
+#if defined(BRUME_VDB_FP16) || defined(BRUME_VDB_FP8)
+#ifdef BRUME_VDB_FP16
+#define BRUME_VDB_GRID_TYPE PNANOVDB_GRID_TYPE_FP16
+#define BRUME_VDB_LOG_BITS 4u
+#else
+#define BRUME_VDB_GRID_TYPE PNANOVDB_GRID_TYPE_FP8
+#define BRUME_VDB_LOG_BITS 3u
+#endif
+float vdbVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
+    uint level = 0u;
+    pnanovdb_address_t a = pnanovdb_readaccessor_get_value_address_and_level(BRUME_VDB_GRID_TYPE, buf, acc, ijk, level);
+    return level == 0u ? pnanovdb_leaf_fp_read_float(buf, a, ijk, BRUME_VDB_LOG_BITS) : pnanovdb_read_float(buf, a);
+}
+#else
 float vdbVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
     return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
 }
+#endif
 
 // Whether the trilinear cell with lower corner `base` may be non-zero (core: DensityGrid::occupied;
 // shared/vdb.h vdbOccupancyWord), read from the cells after the grid (VolumeData.kind.w).

@@ -91,17 +91,18 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
     // Hidden is editor state the JSON form does not carry; a set never changes the counts.
     Scene& n = s.value();
     for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) n.volumes[i].hidden = current.volumes[i].hidden;
-    // A loaded VDB grid is not in the JSON form either: it stays while its file and grid do, and is
-    // read again when an edit changes them (a file that cannot be read refuses the edit).
+    // A loaded VDB grid is not in the JSON form either: it stays while its file, grid and encoding do,
+    // and is read again when an edit changes them (a file that cannot be read refuses the edit).
     for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) {
         Volume& v = n.volumes[i];
         const Volume& was = current.volumes[i];
-        if (v.file == was.file && v.grid == was.grid && v.type == was.type) {
+        if (v.file == was.file && v.grid == was.grid && v.encoding == was.encoding && v.type == was.type) {
             v.density = was.density;
         } else if (v.type == VolumeType::Vdb && !v.file.empty()) {
             const std::filesystem::path p(v.file);
             VdbImportOptions options;
             options.grid = v.grid;
+            options.encoding = v.encoding;
             Result<VdbLoad> load = loadVdbDensity((p.is_absolute() ? p : std::filesystem::path(n.baseDir) / p).string(), options);
             if (!load) return Error{"edit: volumes[" + std::to_string(i) + "].file: " + load.error().message};
             v.density = load.value().grid;

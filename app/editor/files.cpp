@@ -125,6 +125,7 @@ Result<OpenedScene> openSceneFile(const std::string& path) {
         if (p.is_relative()) p = fs::path(out.scene.baseDir) / p;
         VdbImportOptions options;
         options.grid = v.grid;
+        options.encoding = v.encoding;
         Result<VdbLoad> load = loadVdbDensity(p.lexically_normal().string(), options);
         if (load) v.density = load.value().grid;
         else out.warnings.push_back(path + ": volumes[" + std::to_string(i) + "].file: " + load.error().message +
@@ -135,10 +136,15 @@ Result<OpenedScene> openSceneFile(const std::string& path) {
 
 Result<Volume> importVdbVolume(const Scene& scene, const std::string& sceneDir, const std::string& path) {
     if (!exists(path)) return Error{path + ": no such file."};
-    Result<VdbLoad> load = loadVdbDensity(absolutePath(path), VdbImportOptions{});
+    // A scene's vdb volumes share one encoding (io/scene_json.cpp): the new one takes theirs.
+    VdbImportOptions options;
+    for (const Volume& other : scene.volumes)
+        if (other.type == VolumeType::Vdb) options.encoding = other.encoding;
+    Result<VdbLoad> load = loadVdbDensity(absolutePath(path), options);
     if (!load) return load.error();
     Volume v;
     v.type = VolumeType::Vdb;
+    v.encoding = options.encoding;
     v.name = fs::path(path).stem().string();
     v.file = relativeIfInside(path, sceneDir);
     v.grid = load.value().gridName;
