@@ -8,78 +8,11 @@
 #include <string>
 
 #include "core/render.h"
+#include "tests/shaft_scenes.h"
 
 using namespace brume;
 
 namespace {
-
-Geometry slab(glm::vec3 center, glm::vec3 size) {
-    Geometry g;
-    g.type = GeometryType::Box;
-    g.transform.translation = center;
-    g.transform.scale = size;
-    g.albedo = glm::vec3(0.3f);
-    return g;
-}
-
-Volume haze() {
-    Volume v;
-    v.type = VolumeType::Height;
-    v.base_height = 0.0f;
-    v.falloff = 0.4f;
-    v.medium.scattering = glm::vec3(0.15f);
-    v.medium.absorption = glm::vec3(0.01f);
-    return v;
-}
-
-Geometry ground(float albedo) {
-    Geometry g;
-    g.type = GeometryType::Plane;
-    g.albedo = glm::vec3(albedo);
-    return g;
-}
-
-// tests/test_sun_shadow.cpp shaftScene with the gap as a parameter.
-Scene sunShaft(float gap) {
-    Scene s;
-    s.camera.position = {7.0f, 1.5f, 0.0f};
-    s.camera.target = {0.0f, 1.2f, 0.0f};
-    s.camera.far = 40.0f;
-    s.froxels.far = 30.0f;
-    s.ambient = glm::vec3(0.03f);
-    Light sun = makeLight(LightType::Directional);
-    sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, 0.35f));
-    sun.intensity = 3.0f;
-    sun.shadows = true;
-    s.lights = {sun};
-    s.volumes = {haze()};
-    const float c = 6.0f + 0.5f * gap;
-    s.geometry = {ground(0.5f), slab({0.0f, 4.0f, -c}, {30.0f, 0.4f, 12.0f}), slab({0.0f, 4.0f, c}, {30.0f, 0.4f, 12.0f})};
-    return s;
-}
-
-// tests/test_local_shadow.cpp spotShaft.
-Scene spotShaft() {
-    Scene s;
-    s.camera.position = {0.0f, 1.5f, 8.0f};
-    s.camera.target = {0.0f, 1.3f, 0.0f};
-    s.camera.fov_y_deg = 55.0f;
-    s.camera.far = 40.0f;
-    s.froxels.far = 30.0f;
-    s.ambient = glm::vec3(0.01f);
-    Light spot = makeLight(LightType::Spot);
-    spot.position = {0.0f, 6.0f, 0.0f};
-    spot.direction = {0.0f, -1.0f, 0.0f};
-    spot.outer_deg = 40.0f;
-    spot.inner_deg = 32.0f;
-    spot.intensity = 150.0f;
-    spot.shadows = true;
-    s.lights = {spot};
-    s.volumes = {haze()};
-    s.geometry = {ground(0.5f), slab({-4.75f, 4.0f, 0.0f}, {8.0f, 0.4f, 12.0f}),
-                  slab({4.75f, 4.0f, 0.0f}, {8.0f, 0.4f, 12.0f})};
-    return s;
-}
 
 void row(const char* scene, const std::string& setting, const Scene& s, RenderRequest req, const Image& ref) {
     const double err = relativeMeanAbsError(renderFroxelCpu(s, req).image, ref);
@@ -135,8 +68,8 @@ void study(const char* name, const Scene& base) {
 int main(int argc, char** argv) {
     const std::string only = argc > 1 ? argv[1] : "";
     std::printf("| scene | setting | error |\n|---|---|---|\n");
-    if (only.empty() || only == "sun15") study("sun, 1.5 m gap", sunShaft(1.5f));
-    if (only.empty() || only == "spot") study("spot, 1.5 m gap", spotShaft());
-    if (only.empty() || only == "sun25") study("sun, 2.5 m gap", sunShaft(2.5f));
+    if (only.empty() || only == "sun15") study("sun, 1.5 m gap", test::sunShaftScene(1.5f));
+    if (only.empty() || only == "spot") study("spot, 1.5 m gap", test::spotShaftScene());
+    if (only.empty() || only == "sun25") study("sun, 2.5 m gap", test::sunShaftScene(2.5f));
     return 0;
 }

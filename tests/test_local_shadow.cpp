@@ -10,6 +10,7 @@
 #include "core/geometry.h"
 #include "core/local_shadow.h"
 #include "core/render.h"
+#include "shaft_scenes.h"
 #include "test_support.h"
 
 using namespace brume;
@@ -52,34 +53,7 @@ Scene pointOverBox() {
     return s;
 }
 
-// A spot 5 m up shining down through a 1.5 m gap between two slabs into ground-hugging height fog:
-// one shaft under the gap, the rest of the cone blocked; seen from the side under the roof.
-Scene spotShaft() {
-    Scene s = test::sceneWithTestView();
-    s.camera.position = {0.0f, 1.5f, 8.0f};
-    s.camera.target = {0.0f, 1.3f, 0.0f};
-    s.camera.far = 40.0f;
-    s.froxels.far = 30.0f;
-    s.ambient = glm::vec3(0.01f);
-    Light spot = makeLight(LightType::Spot);
-    spot.position = {0.0f, 6.0f, 0.0f};
-    spot.direction = {0.0f, -1.0f, 0.0f};
-    spot.outer_deg = 40.0f;
-    spot.inner_deg = 32.0f;
-    spot.intensity = 150.0f;
-    spot.shadows = true;
-    s.lights = {spot};
-    Volume haze;
-    haze.type = VolumeType::Height;
-    haze.base_height = 0.0f;
-    haze.falloff = 0.4f;
-    haze.medium.scattering = glm::vec3(0.15f);
-    haze.medium.absorption = glm::vec3(0.01f);
-    s.volumes = {haze};
-    s.geometry = {test::groundPlane(glm::vec3(0.5f)), box({-4.75f, 4.0f, 0.0f}, {8.0f, 0.4f, 12.0f}),
-                  box({4.75f, 4.0f, 0.0f}, {8.0f, 0.4f, 12.0f})};
-    return s;
-}
+Scene spotShaft() { return test::spotShaftScene(); }
 
 RenderRequest request(Quality q) {
     RenderRequest r;

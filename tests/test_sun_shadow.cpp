@@ -10,49 +10,13 @@
 #include "core/geometry.h"
 #include "core/render.h"
 #include "core/sun_shadow.h"
+#include "shaft_scenes.h"
 
 using namespace brume;
 
 namespace {
 
-Geometry slab(glm::vec3 center, glm::vec3 size) {
-    Geometry g;
-    g.type = GeometryType::Box;
-    g.transform.translation = center;
-    g.transform.scale = size;
-    g.albedo = glm::vec3(0.3f);
-    return g;
-}
-
-// A roof of two slabs 4 m up with a gap along z between them (2.5 m by default), a slanted sun
-// shining through the gap into ground-hugging height fog: one light shaft and one lit strip on the
-// ground, seen from under the roof.
-Scene shaftScene(float gap = 2.5f) {
-    Scene s;
-    s.camera.position = {7.0f, 1.5f, 0.0f};
-    s.camera.target = {0.0f, 1.2f, 0.0f};
-    s.camera.far = 40.0f;
-    s.froxels.far = 30.0f;
-    s.ambient = glm::vec3(0.03f);
-    Light sun = makeLight(LightType::Directional);
-    sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, 0.35f));
-    sun.intensity = 3.0f;
-    sun.shadows = true;
-    s.lights = {sun};
-    Volume haze;
-    haze.type = VolumeType::Height;
-    haze.base_height = 0.0f;
-    haze.falloff = 0.4f;
-    haze.medium.scattering = glm::vec3(0.15f);
-    haze.medium.absorption = glm::vec3(0.01f);
-    s.volumes = {haze};
-    Geometry ground;
-    ground.type = GeometryType::Plane;
-    ground.albedo = glm::vec3(0.5f);
-    const float c = 6.0f + 0.5f * gap;  // slab centres: 12 m wide slabs
-    s.geometry = {ground, slab({0.0f, 4.0f, -c}, {30.0f, 0.4f, 12.0f}), slab({0.0f, 4.0f, c}, {30.0f, 0.4f, 12.0f})};
-    return s;
-}
+Scene shaftScene(float gap = 2.5f) { return test::sunShaftScene(gap); }
 
 RenderRequest request(Quality q) {
     RenderRequest r;
