@@ -11,6 +11,7 @@
 #include "core/compile.h"
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu_test_support.h"
 #include "io/vdb_import.h"
 #include "vdb_test_util.h"
 
@@ -20,13 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kTolerance = 0.01;
+using test::asImage;
 
-Image asImage(const std::vector<glm::vec4>& v) {
-    Image img(static_cast<int>(v.size()), 1);
-    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
-    return img;
-}
+constexpr double kTolerance = 0.01;
 
 DensityGridPtr loadGrid(const fs::path& file) {
     Result<VdbLoad> r = loadVdbDensity(file.string(), {});
@@ -72,14 +69,11 @@ Scene sceneAround(const Volume& v) {
     return s;
 }
 
-class GpuVdb : public ::testing::Test {
+class GpuVdb : public test::ValidatedGpuTest {
 protected:
     void SetUp() override {
-        GpuOptions options;
-        options.validation = true;
-        auto r = GpuRenderer::create(options);
-        ASSERT_TRUE(r.ok()) << r.error().message;
-        renderer = std::move(r.value());
+        ValidatedGpuTest::SetUp();
+        if (HasFatalFailure()) return;
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir = fs::temp_directory_path() / ("brume_gpu_vdb_" + std::to_string(getpid()) + "_" + info->name());
         fs::create_directories(dir);
@@ -87,9 +81,7 @@ protected:
     void TearDown() override {
         std::error_code ec;
         fs::remove_all(dir, ec);
-        if (!renderer) return;
-        const std::vector<std::string> messages = renderer->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+        ValidatedGpuTest::TearDown();
     }
 
     // GPU vs CPU froxel: media (the voxelize pass itself), integrated volumes and image. Also checks
@@ -126,7 +118,6 @@ protected:
                     what, mediaErr, scatErr, imageErr, share);
     }
 
-    std::unique_ptr<GpuRenderer> renderer;
     fs::path dir;
 };
 

@@ -11,6 +11,7 @@
 #include "core/compile.h"
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu_test_support.h"
 #include "io/vdb_import.h"
 #include "test_support.h"
 #include "vdb_test_util.h"
@@ -21,13 +22,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kTolerance = 0.01;
+using test::asImage;
 
-Image asImage(const std::vector<glm::vec4>& v) {
-    Image img(static_cast<int>(v.size()), 1);
-    for (size_t i = 0; i < v.size(); ++i) img.pixels[i] = glm::vec3(v[i]);
-    return img;
-}
+constexpr double kTolerance = 0.01;
 
 DensityGridPtr load(const fs::path& file, VdbEncoding e) {
     VdbImportOptions options;
@@ -75,20 +72,8 @@ Scene sceneWith(const DensityGridPtr& grid, float densityScale) {
     return s;
 }
 
-class GpuVdbEncoding : public ::testing::Test {
+class GpuVdbEncoding : public test::ValidatedGpuTest {
 protected:
-    void SetUp() override {
-        GpuOptions options;
-        options.validation = true;
-        auto r = GpuRenderer::create(options);
-        ASSERT_TRUE(r.ok()) << r.error().message;
-        renderer = std::move(r.value());
-    }
-    void TearDown() override {
-        if (!renderer) return;
-        const std::vector<std::string> messages = renderer->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
 
     void expectMatchesCpu(const Scene& scene, const char* what) {
         RenderRequest request;
@@ -117,7 +102,6 @@ protected:
         EXPECT_GT(share, 10.0 * kTolerance) << what << ": the grid barely shows, the test could not fail";
     }
 
-    std::unique_ptr<GpuRenderer> renderer;
 };
 
 }  // namespace
