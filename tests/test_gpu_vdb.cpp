@@ -150,7 +150,7 @@ TEST_F(GpuVdb, SyntheticSkewedGridMatchesCpu) {
 
 // The done-when file: Houdini smoke, half floats, old file version.
 TEST_F(GpuVdb, GafferSmokeMatchesCpu) {
-    if (!fs::is_directory(test::sharedVdbDir())) GTEST_SKIP() << "../shared/vdb is absent; real-file test skipped";
+    BRUME_REQUIRE_SHARED_VDB();
     Volume v = vdbVolume(loadGrid(test::sharedVdbDir() / "gaffer_smoke.vdb"));
     ASSERT_TRUE(v.density);
     v.density_scale = 4.0f;

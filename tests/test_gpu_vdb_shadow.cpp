@@ -115,7 +115,7 @@ TEST_F(GpuVdbShadow, BlockShadowsMatchCpu) {
 
 // The done-when: the smoke lit and shadowed, GPU matching CPU.
 TEST_F(GpuVdbShadow, GafferSmokeShadowsMatchCpu) {
-    if (!fs::is_directory(test::sharedVdbDir())) GTEST_SKIP() << "../shared/vdb is absent; real-file test skipped";
+    BRUME_REQUIRE_SHARED_VDB();
     Result<VdbLoad> load = loadVdbDensity((test::sharedVdbDir() / "gaffer_smoke.vdb").string(), {});
     ASSERT_TRUE(load.ok()) << load.error().message;
     Volume v;

@@ -20,12 +20,6 @@
 using namespace brume;
 namespace fs = std::filesystem;
 
-// GTEST_SKIP returns only from the function it is written in, so this must be a macro used in the
-// test body itself: a helper function would skip nothing and the test would run on without data.
-#define BRUME_REQUIRE_SHARED_VDB()                                                         \
-    if (!std::filesystem::is_directory(brume::test::sharedVdbDir()))                       \
-    GTEST_SKIP() << "../shared/vdb is absent (a fresh clone has no ../shared); real-file test skipped"
-
 namespace {
 
 class Vdb : public ::testing::Test {

@@ -110,7 +110,7 @@ TEST(VdbCulling, FroxelsInEmptyCellsSkipTheWalk) {
 
 // The real smoke: culling changes nothing there either.
 TEST(VdbCulling, GafferSmokeSameWithAndWithoutCulling) {
-    if (!fs::is_directory(test::sharedVdbDir())) GTEST_SKIP() << "../shared/vdb is absent; real-file test skipped";
+    BRUME_REQUIRE_SHARED_VDB();
     Result<VdbLoad> load = loadVdbDensity((test::sharedVdbDir() / "gaffer_smoke.vdb").string(), {});
     ASSERT_TRUE(load.ok()) << load.error().message;
     Scene s = ballsScene(load.value().grid);

@@ -20,10 +20,6 @@
 using namespace brume;
 namespace fs = std::filesystem;
 
-#define BRUME_REQUIRE_SHARED_VDB()                                                   \
-    if (!std::filesystem::is_directory(brume::test::sharedVdbDir()))                 \
-    GTEST_SKIP() << "../shared/vdb is absent (a fresh clone has no ../shared); real-file test skipped"
-
 namespace {
 
 const std::string kReader = std::string(BRUME_BINARY_DIR) + "/app/brume-vdb-read";

@@ -270,7 +270,7 @@ float smokeCentroidX(const FroxelVolumes& v) {
 // cell per froxel, 0.39 at ultra; 1.35 without). The tolerance is loose: 128x72 pixels give 16x9
 // froxel columns ~13 m wide on a plume of 0.48 m voxels, whose detail no grid of that size resolves.
 TEST_F(VdbShadow, GafferSmokeIsDarkerAwayFromTheSunAndMatchesTheReference) {
-    if (!fs::is_directory(test::sharedVdbDir())) GTEST_SKIP() << "../shared/vdb is absent; real-file test skipped";
+    BRUME_REQUIRE_SHARED_VDB();
     Result<VdbLoad> load = loadVdbDensity((test::sharedVdbDir() / "gaffer_smoke.vdb").string(), {});
     ASSERT_TRUE(load.ok()) << load.error().message;
     const DensityGridPtr grid = load.value().grid;

@@ -50,3 +50,9 @@ inline void writeGrids(const std::filesystem::path& path, const openvdb::GridPtr
 }
 
 }  // namespace brume::test
+
+// GTEST_SKIP returns only from the function it is written in, so this must be a macro used in the
+// test body itself: a helper function would skip nothing and the test would run on without data.
+#define BRUME_REQUIRE_SHARED_VDB()                                                         \
+    if (!std::filesystem::is_directory(brume::test::sharedVdbDir()))                       \
+    GTEST_SKIP() << "../shared/vdb is absent (a fresh clone has no ../shared); real-file test skipped"
