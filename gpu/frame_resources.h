@@ -1,12 +1,13 @@
-// The buffers and images the passes read and write, recreated only when their sizes change.
+// The buffers and images of the froxel frame (declared in shaders/shared/frame_table.h, expanded in
+// frame_table.h), recreated only when their sizes change.
 //
 //   frame (uniform) ---------------------------------------------------------> every pass
-//   volumes, lights (storage) -> voxelize -> media* -> light -> source -> integrate -> integrated*
-//   previousFrame, history[read] -> temporal (after light) -> history[write] -> source, mediaExtinction
-//   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> output
+//   volumes, lights (storage) -> voxelize -> media* -> light -> sourceImage -> integrate -> integrated*
+//   previousFrame, history in -> temporal (after light) -> history out -> sourceImage, mediaExtinction
+//   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> outputImage
 //
 // Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes and 4 history volumes (temporal
-// ping-pong pair of S and sigma_t); at 1280x720 High (160x90x96 froxels) that is 10 x 22 MiB =
+// ping-pong pairs of S and sigma_t); at 1280x720 High (160x90x96 froxels) that is 10 x 22 MiB =
 // 221 MiB, at Ultra (320x180x128) 10 x 113 MiB = 1.1 GiB.
 #pragma once
 
@@ -16,56 +17,37 @@
 #include <memory>
 #include <vector>
 
-#include "core/density_grid.h"
+#include "frame_table.h"
 #include "resources.h"
 
 namespace brume::gpu {
 
-// One side of the temporal history's ping-pong pair: the resolved S and sigma_t of one frame.
-struct HistoryImages {
-    GpuImage source;      // rgba32f: resolved rgb S
-    GpuImage extinction;  // rgba32f: resolved rgb sigma_t
-};
-
 struct FrameResources {
-    Buffer frame;     // FrameUniforms
-    Buffer volumes;   // VolumeData[], at least one entry
-    Buffer lights;    // LightData[], at least one entry
-    Buffer counters;  // FroxelCounters, read back by the host
-    Buffer vertices;  // GeometryVertex[]
-    Buffer previousFrame;  // FrameUniforms of the previous frame (temporal pass)
-
-    glm::ivec3 froxelDims{0};
-    GpuImage mediaScatteringG, mediaExtinction, mediaEmission, source, integratedScattering, integratedTransmittance;
-    // Kept across frames (unlike the volumes above); recreated with them, then undefined until a
-    // first transition (historyUndefined) and unread until a frame has written them.
-    std::array<HistoryImages, 2> history;
+    std::array<Buffer, kBuffers.size()> buffers;
+    std::array<GpuImage, kImages.size()> images;
+    // Each history pair's two images, kept across frames (unlike the others): recreated with the
+    // froxel images, then undefined until a first transition (historyUndefined) and unread until a
+    // frame has written them. Which one sits behind the *_IN binding alternates every frame.
+    std::array<std::array<GpuImage, 2>, kHistory.size()> history;
     bool historyUndefined = true;
 
-    // Fog transmittance volume (shaders/shared/shadow_volume.h): shadowVolumeDims cells per light.
-    glm::ivec3 shadowExtent{0};  // cells x, y and z * lights: the shadow volume pass's dispatch
-    Buffer shadowTransmittance;  // vec4[], at least one entry
-    // Sun shadow map (shaders/shared/sun_shadow.h), ray cast on the host: SunShadowFit + float[N * N].
-    Buffer sunShadowMap;
-    // Point and spot light shadow maps (shaders/shared/local_shadow.h), ray cast on the host:
-    // float[slots * 6 * N * N], 1.5 MiB per mapped light at high (N = 256).
-    Buffer localShadowMaps;
+    Buffer& operator[](BufferId id) { return buffers[static_cast<size_t>(id)]; }
+    const Buffer& operator[](BufferId id) const { return buffers[static_cast<size_t>(id)]; }
+    GpuImage& operator[](ImageId id) { return images[static_cast<size_t>(id)]; }
+    const GpuImage& operator[](ImageId id) const { return images[static_cast<size_t>(id)]; }
+    // The image behind ref this frame (writeIndex: the history side written this frame).
+    const GpuImage& image(ResRef ref, int writeIndex) const;
 
-    // Every vdb volume's NanoVDB grid back to back (compileScene's order and offsets), sparse as
-    // imported: GPU memory is the NanoVDB size plus the occupancy cells. Re-uploaded only when the set of grids changes.
-    Buffer vdbGrids;                // uint[], at least 32 bytes
-    // The grids it holds, in order; held so that a new grid cannot reuse a freed one's address.
+    glm::ivec3 froxelDims{0};  // of the image3D resources
+    glm::ivec2 size{0};        // of the image2D resources
+    // Cells x, y and z * lights: the shadow volume pass's dispatch (shaders/shared/shadow_volume.h).
+    glm::ivec3 shadowExtent{0};
+
+    Buffer vertices;  // GeometryVertex[] of the geometry pass (not in the descriptor set)
+    // The grids behind buffers[vdbGrids], in order; held so that a new grid cannot reuse a freed one's address.
     std::vector<std::shared_ptr<const DensityGrid>> vdbGridsUploaded;
-    // Light lists per cluster (shaders/shared/clusters.h), built on the CPU (core/clusters.cpp) and
-    // uploaded each frame: 256 B per 8^3 froxels, 720 KiB at 1280x720 High.
-    Buffer lightClusters;  // int[]
-
-    glm::ivec2 size{0};
-    GpuImage sceneColor;   // rgba32f, colour attachment 0 and storage
-    GpuImage sceneDepth;   // r32f view depth, colour attachment 1 and storage
-    GpuImage depthBuffer;  // d32, depth test only
-    GpuImage output;       // rgba32f storage
-    Buffer outputReadback;
+    Buffer outputReadback;  // outputImage, every frame
+    std::vector<Buffer> volumeReadback;  // the READBACK images, in table order, when asked for
 };
 
 }  // namespace brume::gpu

@@ -42,11 +42,12 @@ Result<void> GpuRenderer::State::createCommands() {
 Result<void> GpuRenderer::State::createPasses() {
     const VkFormatFeatureFlags storageAttachment =
         VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
-    if (!device->supportsFormat(kVolumeFormat, storageAttachment) ||
-        !device->supportsFormat(VK_FORMAT_R32_SFLOAT, storageAttachment) ||
-        !device->supportsFormat(VK_FORMAT_D32_SFLOAT, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
-        return Error{"The Vulkan device " + device->name() +
-                     " cannot use 32-bit float images as storage and render targets, which brume needs."};
+    for (const ImageDecl& d : kImages)
+        if (!device->supportsFormat(vkFormat(d.format), storageAttachment))
+            return Error{"The Vulkan device " + device->name() +
+                         " cannot use 32-bit float images as storage and render targets, which brume needs."};
+    if (!device->supportsFormat(VK_FORMAT_D32_SFLOAT, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
+        return Error{"The Vulkan device " + device->name() + " has no 32-bit float depth buffer, which brume needs."};
     Result<DescriptorBindings> b = createDescriptorBindings(*device);
     if (!b) return b.error();
     bindings = std::move(b.value());
@@ -54,15 +55,12 @@ Result<void> GpuRenderer::State::createPasses() {
     Result<GeometryPass> g = GeometryPass::create(*device, layout);
     if (!g) return g.error();
     geometry = std::move(g.value());
-    for (auto [pass, create] : {std::pair{&voxelize, &createVoxelizePass}, std::pair{&voxelizeVdb, &createVoxelizeVdbPass},
-                                std::pair{&shadowVolume, &createShadowVolumePass},
-                                std::pair{&shadowVolumeVdb, &createShadowVolumeVdbPass},
-                                std::pair{&light, &createLightPass}, std::pair{&temporal, &createTemporalPass},
-                                std::pair{&integrate, &createIntegratePass}, std::pair{&composite, &createCompositePass},
-                                std::pair{&debugView, &createDebugViewPass}}) {
-        Result<ComputePass> p = create(*device, layout);
-        if (!p) return p.error();
-        *pass = std::move(p.value());
+    // Every pass's plain variant now, so that a broken build fails here and the first frame is not
+    // slower than the next; the others when a scene first needs them.
+    for (const PassDecl& p : kPasses) {
+        if (p.dispatch == Dispatch::Raster) continue;
+        Result<const ComputePass*> pass = pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, {}));
+        if (!pass) return pass.error();
     }
     Result<PassTimer> t = PassTimer::create(*device, kMaxPasses);
     if (!t) return t.error();
@@ -141,21 +139,21 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
                           localBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
-    if (!cs.volumes.empty()) std::memcpy(r.volumes.mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
-    if (!cs.lights.empty()) std::memcpy(r.lights.mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
+    if (!cs.volumes.empty()) std::memcpy(r[BufferId::volumes].mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
+    if (!cs.lights.empty()) std::memcpy(r[BufferId::lights].mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
-    std::memcpy(r.lightClusters.mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
+    std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
     const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling), cs.lights.size());
-    std::memcpy(static_cast<int*>(r.lightClusters.mapped) + clusters.records.size(), reach.data(),
+    std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
     r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadows.y).z * reach[1 + cs.lights.size()];
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
-    std::memcpy(r.sunShadowMap.mapped, &sun.fit, sizeof(sun.fit));
+    std::memcpy(r[BufferId::sunShadowMap].mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
-        std::memcpy(static_cast<char*>(r.sunShadowMap.mapped) + sizeof(sun.fit), sun.depth.data(), sunBytes);
-    if (localBytes > 0) std::memcpy(r.localShadowMaps.mapped, local.depth.data(), localBytes);
+        std::memcpy(static_cast<char*>(r[BufferId::sunShadowMap].mapped) + sizeof(sun.fit), sun.depth.data(), sunBytes);
+    if (localBytes > 0) std::memcpy(r[BufferId::localShadowMaps].mapped, local.depth.data(), localBytes);
 
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
     // decides, as for the CPU renderer); only the last is read back.
@@ -172,16 +170,16 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         applyShadowSettings(frame, request);  // as renderFroxelCpu
         applySunShadowSettings(frame, cs);
         applyVdbShadowSettings(frame, cs, request);
-        std::memcpy(r.frame.mapped, &frame, sizeof(frame));
-        std::memcpy(r.previousFrame.mapped, &s_->temporalState.frame, sizeof(frame));
+        std::memcpy(r[BufferId::frame].mapped, &frame, sizeof(frame));
+        std::memcpy(r[BufferId::previousFrame].mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);
         const bool last = n == frames - 1;
         BRUME_VK(vkResetCommandBuffer(s_->cmd, 0), "reset the command buffer");
         VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         BRUME_VK(vkBeginCommandBuffer(s_->cmd, &begin), "begin recording the frame");
-        s_->recordFrame(static_cast<uint32_t>(vertices.size()), cs.ambient, frame.projection.w, last && readBackVolumes,
-                        t.writeIndex);
+        BRUME_TRY(s_->recordFrame(static_cast<uint32_t>(vertices.size()), cs.ambient, frame.projection.w,
+                                  last && readBackVolumes, t.writeIndex));
         BRUME_VK(vkEndCommandBuffer(s_->cmd), "record the frame");
         Result<double> wall = s_->submitAndWait();
         if (!wall) return wall.error();
@@ -195,7 +193,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     out.image = Image(size.x, size.y);
     const auto* pixels = static_cast<const glm::vec4*>(r.outputReadback.mapped);
     for (size_t i = 0; i < out.image.pixels.size(); ++i) out.image.pixels[i] = glm::vec3(pixels[i]);
-    const auto* counters = static_cast<const shd::FroxelCounters*>(r.counters.mapped);
+    const auto* counters = static_cast<const shd::FroxelCounters*>(r[BufferId::counters].mapped);
     out.litFroxels = counters->litFroxels;
     out.skippedFroxels = counters->skippedFroxels;
     out.overfullClusters = clusters.overfullClusters;
@@ -206,9 +204,10 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
         FroxelVolumes& v = out.volumes;
         v.dims = dims;
         v.frame = frame;
-        std::array<std::vector<glm::vec4>*, 6> dst{&v.mediaScatteringG, &v.mediaExtinction, &v.mediaEmission,
-                                                    &v.source, &v.integratedScattering, &v.integratedTransmittance};
-        for (size_t i = 0; i < dst.size(); ++i) *dst[i] = readVolume(s_->volumeReadback[i], dims);
+        // The READBACK images of the table, in its order.
+        const std::array<std::vector<glm::vec4>*, 6> dst{&v.mediaScatteringG, &v.mediaExtinction, &v.mediaEmission,
+                                                          &v.source, &v.integratedScattering, &v.integratedTransmittance};
+        for (size_t i = 0; i < dst.size() && i < r.volumeReadback.size(); ++i) *dst[i] = readVolume(r.volumeReadback[i], dims);
         v.litFroxels = out.litFroxels;
         v.skippedFroxels = out.skippedFroxels;
         v.overfullClusters = out.overfullClusters;

@@ -134,7 +134,15 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
 }
 
 Result<void> GeometryPass::attach(const Device& device, const FrameResources& r) {
-    const std::array<VkImageView, 3> views{r.sceneColor.view.get(), r.sceneDepth.view.get(), r.depthBuffer.view.get()};
+    framebuffer_ = FramebufferOwner{};
+    depthBuffer_ = GpuImage{};
+    const VkExtent3D e{static_cast<uint32_t>(r.size.x), static_cast<uint32_t>(r.size.y), 1};
+    Result<GpuImage> depth = createImage(device, e, false, VK_FORMAT_D32_SFLOAT,
+                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "geometry depth buffer");
+    if (!depth) return depth.error();
+    depthBuffer_ = std::move(depth.value());
+    const std::array<VkImageView, 3> views{r[ImageId::sceneColor].view.get(), r[ImageId::sceneDepth].view.get(),
+                                           depthBuffer_.view.get()};
     VkFramebufferCreateInfo info = vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
     info.renderPass = renderPass_.get();
     info.attachmentCount = static_cast<uint32_t>(views.size());
@@ -149,8 +157,13 @@ Result<void> GeometryPass::attach(const Device& device, const FrameResources& r)
     return {};
 }
 
-void GeometryPass::record(VkCommandBuffer cmd, const DescriptorBindings& b, const FrameResources& r,
-                          uint32_t vertexCount, glm::vec3 ambient, float cameraFar) const {
+void GeometryPass::record(const PassContext& ctx) const {
+    const VkCommandBuffer cmd = ctx.cmd;
+    const FrameResources& r = *ctx.res;
+    const DescriptorBindings& b = *ctx.bindings;
+    const uint32_t vertexCount = ctx.vertexCount;
+    const glm::vec3 ambient = ctx.ambient;
+    const float cameraFar = ctx.cameraFar;
     const VkExtent2D extent{static_cast<uint32_t>(r.size.x), static_cast<uint32_t>(r.size.y)};
     std::array<VkClearValue, 3> clears{};
     clears[0].color = {{ambient.r, ambient.g, ambient.b, 1.0f}};  // sky radiance

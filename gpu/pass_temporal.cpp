@@ -1,6 +1,6 @@
-// Temporal pass (shaders/temporal.comp; rule in shaders/shared/temporal.h). in: frame, previous
-// frame, source, mediaExtinction, history *_IN. out: history *_OUT, then copied into source and
-// mediaExtinction for the integrate pass.
+// Temporal pass (shaders/temporal.comp; rule in shaders/shared/temporal.h; reads and writes in
+// frame_table.cpp): the resolved history *_OUT is copied over sourceImage and mediaExtinction for the
+// integrate pass.
 #include <initializer_list>
 #include <utility>
 #include <vector>
@@ -10,10 +10,6 @@
 #include "vk_check.h"
 
 namespace brume::gpu {
-
-Result<ComputePass> createTemporalPass(const Device& device, VkPipelineLayout layout) {
-    return createComputePass(device, layout, "temporal.comp", "temporal");
-}
 
 namespace {
 
@@ -40,16 +36,14 @@ void relayout(VkCommandBuffer cmd, std::initializer_list<std::pair<VkImage, std:
 
 // One invocation per froxel, then the resolved pair replaces this frame's source and extinction
 // (copied in transfer layouts, then every image is back in GENERAL for the passes after).
-void recordTemporal(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& b, const FrameResources& r,
-                    int writeIndex) {
-    const glm::ivec3 dims = r.froxelDims;
-    bindComputePass(cmd, pass, b);
-    vkCmdDispatch(cmd, static_cast<uint32_t>(shd::brumeDivRoundUp(dims.x, shd::FROXEL_GROUP_X)),
-                  static_cast<uint32_t>(shd::brumeDivRoundUp(dims.y, shd::FROXEL_GROUP_Y)),
-                  static_cast<uint32_t>(shd::brumeDivRoundUp(dims.z, shd::FROXEL_GROUP_Z)));
-    const HistoryImages& out = r.history[static_cast<size_t>(writeIndex)];
-    const VkImage outS = out.source.image.get(), outE = out.extinction.image.get();
-    const VkImage source = r.source.image.get(), extinction = r.mediaExtinction.image.get();
+void recordTemporal(const PassContext& ctx) {
+    dispatchPass(ctx);
+    const VkCommandBuffer cmd = ctx.cmd;
+    const FrameResources& r = *ctx.res;
+    const GpuImage& outSource = r.image(historyOut(HistoryId::historySource), ctx.historyWriteIndex);
+    const VkImage outS = outSource.image.get();
+    const VkImage outE = r.image(historyOut(HistoryId::historyExtinction), ctx.historyWriteIndex).image.get();
+    const VkImage source = r[ImageId::sourceImage].image.get(), extinction = r[ImageId::mediaExtinction].image.get();
     constexpr VkImageLayout G = VK_IMAGE_LAYOUT_GENERAL, SRC = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                             DST = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     // The dispatch wrote the history (read by the copy) and read source/extinction (overwritten by it).
@@ -59,7 +53,7 @@ void recordTemporal(VkCommandBuffer cmd, const ComputePass& pass, const Descript
     VkImageCopy region{};
     region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.dstSubresource = region.srcSubresource;
-    region.extent = out.source.extent;
+    region.extent = outSource.extent;
     vkCmdCopyImage(cmd, outS, SRC, source, DST, 1, &region);
     vkCmdCopyImage(cmd, outE, SRC, extinction, DST, 1, &region);
     relayout(cmd, {{outS, {SRC, G}}, {outE, {SRC, G}}, {source, {DST, G}}, {extinction, {DST, G}}},

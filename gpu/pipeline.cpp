@@ -1,38 +1,29 @@
 #include "pipeline.h"
 
 #include <array>
+#include <map>
+#include <vector>
 
 #include "frame_resources.h"
-#include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
 #include "spirv.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
-namespace {
-
-VkDescriptorType bindingType(int binding) {
-    if (binding == shd::BINDING_FRAME || binding == shd::BINDING_PREVIOUS_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    if (binding <= shd::BINDING_COUNTERS || binding == shd::BINDING_SHADOW_TRANSMITTANCE ||
-        binding == shd::BINDING_VDB_GRIDS || binding == shd::BINDING_LIGHT_CLUSTERS ||
-        binding == shd::BINDING_SUN_SHADOW_MAP || binding == shd::BINDING_LOCAL_SHADOW_MAPS)
-        return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-}
-
-}  // namespace
 
 Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     DescriptorBindings b;
-    std::array<VkDescriptorSetLayoutBinding, shd::BINDING_COUNT> bindings{};
-    for (int i = 0; i < shd::BINDING_COUNT; ++i) {
+    std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const BindingDecl& d : bindingTable()) {
+        if (d.binding < 0) return Error{"Brume's GPU binding table has a gap; this build of brume is broken."};
         // Only the buffers reach the geometry pass: devices may allow as few as 4 storage images
         // per graphics stage.
-        const VkShaderStageFlags stages = bindingType(i) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-                                              ? VK_SHADER_STAGE_COMPUTE_BIT
-                                              : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
-                                                    VK_SHADER_STAGE_FRAGMENT_BIT;
-        bindings[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), bindingType(i), 1, stages, nullptr};
+        const VkShaderStageFlags stages = d.image ? VK_SHADER_STAGE_COMPUTE_BIT
+                                                  : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
+                                                        VK_SHADER_STAGE_FRAGMENT_BIT;
+        bindings[static_cast<size_t>(d.binding)] = {static_cast<uint32_t>(d.binding), d.type, 1, stages, nullptr};
+        ++counts[d.type];
     }
     VkDescriptorSetLayoutCreateInfo layoutInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
@@ -54,11 +45,8 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     b.pipelineLayout = PipelineLayoutOwner(device.vk(), pl);
     device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "froxel pipeline layout");
 
-    const std::array<VkDescriptorPoolSize, 3> sizes{{
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 10)},
-    }};
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const auto& [type, n] : counts) sizes.push_back({type, n});
     VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = 1;
     poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
@@ -79,14 +67,14 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
 
 namespace {
 
-// Points binding i at a buffer or an image view.
-VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, const VkDescriptorBufferInfo* buffer,
-                                     const VkDescriptorImageInfo* image) {
+// Points binding `binding` at a buffer or an image view.
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, VkDescriptorType type,
+                                     const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image) {
     VkWriteDescriptorSet w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     w.dstSet = set;
     w.dstBinding = static_cast<uint32_t>(binding);
     w.descriptorCount = 1;
-    w.descriptorType = bindingType(binding);
+    w.descriptorType = type;
     w.pBufferInfo = buffer;
     w.pImageInfo = image;
     return w;
@@ -95,48 +83,30 @@ VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, const VkD
 }  // namespace
 
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
-    // Bindings 0..3, BINDING_PREVIOUS_FRAME, BINDING_SHADOW_TRANSMITTANCE, BINDING_VDB_GRIDS,
-    // BINDING_LIGHT_CLUSTERS, BINDING_SUN_SHADOW_MAP and BINDING_LOCAL_SHADOW_MAPS are buffers, 4..BINDING_OUTPUT images; the
-    // history pair is bound per frame by writeHistoryBindings.
-    const std::array<const Buffer*, 10> buffers{&r.frame,         &r.volumes,
-                                                &r.lights,        &r.counters,
-                                                &r.previousFrame, &r.shadowTransmittance,
-                                                &r.vdbGrids,      &r.lightClusters,
-                                                &r.sunShadowMap,  &r.localShadowMaps};
-    const std::array<int, 10> bufferBindings{shd::BINDING_FRAME,          shd::BINDING_VOLUMES,
-                                             shd::BINDING_LIGHTS,         shd::BINDING_COUNTERS,
-                                             shd::BINDING_PREVIOUS_FRAME, shd::BINDING_SHADOW_TRANSMITTANCE,
-                                             shd::BINDING_VDB_GRIDS,      shd::BINDING_LIGHT_CLUSTERS,
-                                             shd::BINDING_SUN_SHADOW_MAP, shd::BINDING_LOCAL_SHADOW_MAPS};
-    const std::array<const GpuImage*, shd::BINDING_OUTPUT - 3> images{
-        &r.mediaScatteringG, &r.mediaExtinction, &r.mediaEmission, &r.source, &r.integratedScattering,
-        &r.integratedTransmittance, &r.sceneColor, &r.sceneDepth, &r.output};
-    std::array<VkDescriptorBufferInfo, buffers.size()> bufferInfos{};
-    std::array<VkDescriptorImageInfo, images.size()> imageInfos{};
-    std::array<VkWriteDescriptorSet, buffers.size() + images.size()> writes{};
-    for (size_t i = 0; i < buffers.size(); ++i) {
-        bufferInfos[i] = {buffers[i]->buffer.get(), 0, VK_WHOLE_SIZE};
-        writes[i] = descriptorWrite(set, bufferBindings[i], &bufferInfos[i], nullptr);
+    std::array<VkDescriptorBufferInfo, kBuffers.size()> bufferInfos{};
+    std::array<VkDescriptorImageInfo, kImages.size()> imageInfos{};
+    std::vector<VkWriteDescriptorSet> writes;
+    for (size_t i = 0; i < kBuffers.size(); ++i) {
+        bufferInfos[i] = {r.buffers[i].buffer.get(), 0, VK_WHOLE_SIZE};
+        writes.push_back(descriptorWrite(set, kBuffers[i].binding, descriptorType(kBuffers[i].kind), &bufferInfos[i], nullptr));
     }
-    for (size_t k = 0; k < images.size(); ++k) {
-        imageInfos[k] = {VK_NULL_HANDLE, images[k]->view.get(), VK_IMAGE_LAYOUT_GENERAL};
-        writes[buffers.size() + k] = descriptorWrite(set, static_cast<int>(k) + 4, nullptr, &imageInfos[k]);
+    for (size_t i = 0; i < kImages.size(); ++i) {
+        imageInfos[i] = {VK_NULL_HANDLE, r.images[i].view.get(), VK_IMAGE_LAYOUT_GENERAL};
+        writes.push_back(descriptorWrite(set, kImages[i].binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &imageInfos[i]));
     }
     vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
 void writeHistoryBindings(const Device& device, VkDescriptorSet set, const FrameResources& r, int writeIndex) {
-    const HistoryImages& in = r.history[static_cast<size_t>(1 - writeIndex)];
-    const HistoryImages& out = r.history[static_cast<size_t>(writeIndex)];
-    const std::array<std::pair<int, const GpuImage*>, 4> images{{{shd::BINDING_HISTORY_SOURCE_IN, &in.source},
-                                                                 {shd::BINDING_HISTORY_EXTINCTION_IN, &in.extinction},
-                                                                 {shd::BINDING_HISTORY_SOURCE_OUT, &out.source},
-                                                                 {shd::BINDING_HISTORY_EXTINCTION_OUT, &out.extinction}}};
-    std::array<VkDescriptorImageInfo, 4> infos{};
-    std::array<VkWriteDescriptorSet, 4> writes{};
-    for (size_t i = 0; i < images.size(); ++i) {
-        infos[i] = {VK_NULL_HANDLE, images[i].second->view.get(), VK_IMAGE_LAYOUT_GENERAL};
-        writes[i] = descriptorWrite(set, images[i].first, nullptr, &infos[i]);
+    std::array<VkDescriptorImageInfo, 2 * kHistory.size()> infos{};
+    std::array<VkWriteDescriptorSet, 2 * kHistory.size()> writes{};
+    for (size_t i = 0; i < kHistory.size(); ++i) {
+        const auto& pair = r.history[i];
+        infos[2 * i] = {VK_NULL_HANDLE, pair[static_cast<size_t>(1 - writeIndex)].view.get(), VK_IMAGE_LAYOUT_GENERAL};
+        infos[2 * i + 1] = {VK_NULL_HANDLE, pair[static_cast<size_t>(writeIndex)].view.get(), VK_IMAGE_LAYOUT_GENERAL};
+        writes[2 * i] = descriptorWrite(set, kHistory[i].inBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &infos[2 * i]);
+        writes[2 * i + 1] =
+            descriptorWrite(set, kHistory[i].outBinding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &infos[2 * i + 1]);
     }
     vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
@@ -153,9 +123,8 @@ Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* n
     return ShaderModuleOwner(device.vk(), module);
 }
 
-Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const char* shader,
-                                      const char* label) {
-    Result<ShaderModuleOwner> module = createShaderModule(device, shader);
+Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader) {
+    Result<ShaderModuleOwner> module = createShaderModule(device, shader.c_str());
     if (!module) return module.error();
     VkComputePipelineCreateInfo info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
     info.stage = vkStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
@@ -165,18 +134,19 @@ Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout lay
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     BRUME_VK(vkCreateComputePipelines(device.vk(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-             std::string("create the ") + label + " pipeline");
-    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, std::string(label) + " pipeline");
+             "create the " + shader + " pipeline");
+    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, shader);
     ComputePass pass;
     pass.pipeline = PipelineOwner(device.vk(), pipeline);
-    pass.label = label;
+    pass.shader = shader;
     return pass;
 }
 
-void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bindings.pipelineLayout.get(), 0, 1, &bindings.set,
-                            0, nullptr);
+Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLayout layout, const std::string& shader) {
+    if (auto it = passes_.find(shader); it != passes_.end()) return &it->second;
+    Result<ComputePass> p = createComputePass(device, layout, shader);
+    if (!p) return p.error();
+    return &passes_.emplace(shader, std::move(p.value())).first->second;
 }
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
@@ -185,11 +155,6 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags 
     b.srcAccessMask = srcAccess;
     b.dstAccessMask = dstAccess;
     vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-void computeToComputeBarrier(VkCommandBuffer cmd) {
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 }  // namespace brume::gpu

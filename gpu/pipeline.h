@@ -1,7 +1,8 @@
-// What every pass shares: the one descriptor set (bindings: shaders/shared/bindings.h), its
+// What every pass shares: the one descriptor set (its bindings: shaders/shared/frame_table.h), its
 // pipeline layout, shader modules from the embedded SPIR-V, compute pipelines and barriers.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "resources.h"
@@ -19,32 +20,37 @@ struct DescriptorBindings {
 
 Result<DescriptorBindings> createDescriptorBindings(const Device& device);
 
-// Points every binding at the current resources; call after any of them is recreated.
+// Points every binding of the table at the current resources; call after any of them is recreated.
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r);
-// The temporal ping-pong pair: *_IN = r.history[1 - writeIndex], *_OUT = r.history[writeIndex].
+// The temporal ping-pong pairs: *_IN = image 1 - writeIndex of each pair, *_OUT = image writeIndex.
 // Called before recording each frame (the set is not in use then: the previous frame has finished).
 void writeHistoryBindings(const Device& device, VkDescriptorSet set, const FrameResources& r, int writeIndex);
 
 // name: a shader file name from shaders/, e.g. "voxelize.comp".
 Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* name);
 
-// A compute pass: one pipeline and its label for debuggers and timings.
+// A compute pipeline of one shader variant.
 struct ComputePass {
     PipelineOwner pipeline;
-    const char* label = "";
+    std::string shader;  // the embedded SPIR-V's name, also the pipeline's debug name
 };
 
-Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const char* shader,
-                                      const char* label);
+Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader);
 
-void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings);
+// One pipeline per shader variant, created on first use (lavapipe compiles a pipeline in 10-100 ms,
+// so a variant a scene never needs is never built).
+class PipelineCache {
+public:
+    Result<const ComputePass*> get(const Device& device, VkPipelineLayout layout, const std::string& shader);
+    size_t size() const { return passes_.size(); }
+
+private:
+    std::map<std::string, ComputePass> passes_;
+};
 
 // Global memory barrier: writes `srcAccess` by `src` stages before it become visible to `dstAccess`
 // by `dst` stages after it.
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
                    VkAccessFlags dstAccess);
-
-// The barrier between two compute passes: the earlier one's storage writes feed the later one.
-void computeToComputeBarrier(VkCommandBuffer cmd);
 
 }  // namespace brume::gpu

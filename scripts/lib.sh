@@ -5,7 +5,7 @@ BRUME_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BRUME_BUILD="${BRUME_BUILD_DIR:-$BRUME_ROOT/build}"
 
 BRUME_PACKAGES=(
-  cmake g++ pkg-config
+  cmake g++ pkg-config ccache
   libopenvdb-dev libnanovdb-dev libboost-iostreams-dev
   libvulkan-dev mesa-vulkan-drivers glslang-tools glslang-dev spirv-tools vulkan-validationlayers
   libglm-dev libimgui-dev libglfw3-dev libstb-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
@@ -39,6 +39,11 @@ brume_install_deps() {
 }
 
 brume_build() {
-  cmake -S "$BRUME_ROOT" -B "$BRUME_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  # ccache, where installed, makes rebuilds after a branch switch or a clean clone cheap.
+  local launcher=()
+  if command -v ccache >/dev/null 2>&1; then
+    launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  fi
+  cmake -S "$BRUME_ROOT" -B "$BRUME_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}"
   cmake --build "$BRUME_BUILD" -j"$(nproc)"
 }

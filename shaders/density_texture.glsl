@@ -1,9 +1,8 @@
 // Density textures on the GPU (core: densityTextureFactor): the 8 voxels of shared/density_texture.h's
 // textureCell, read with PNanoVDB from the same bytes the CPU samples (the texture grids follow the
-// vdb volumes' grids in BINDING_VDB_GRIDS; VolumeData.textureMin.w is a texture's byte offset), mixed
-// by vdbTrilinear. Include after vdb_sample.glsl when both are used: that file declares the buffer.
+// vdb volumes' grids in vdbGridWords (resources.glsl); VolumeData.textureMin.w is a texture's byte offset), mixed
+// by vdbTrilinear. Include after vdb_sample.glsl when both are used: that file includes PNanoVDB.
 #ifndef BRUME_VOXELIZE_VDB
-layout(std430, set = 0, binding = BINDING_VDB_GRIDS) readonly buffer VdbGridBlock { uint vdbGridWords[]; };
 #define PNANOVDB_GLSL
 #define pnanovdb_buf_data vdbGridWords
 #include "nanovdb/PNanoVDB.h"

@@ -1,7 +1,6 @@
 // Grid sampling of vdb volumes with PNanoVDB (core: DensityGrid::sampleIndex through NanoVDB): the
 // same 8 voxels of shared/vdb.h's vdbCell, mixed by the same vdbTrilinear, read from the very bytes
-// the CPU samples (BINDING_VDB_GRIDS holds them back to back; VolumeData.kind.y is a grid's offset).
-layout(std430, set = 0, binding = BINDING_VDB_GRIDS) readonly buffer VdbGridBlock { uint vdbGridWords[]; };
+// the CPU samples (resources.glsl's vdbGridWords holds them back to back; VolumeData.kind.y is a grid's offset).
 
 #define PNANOVDB_GLSL
 #define pnanovdb_buf_data vdbGridWords

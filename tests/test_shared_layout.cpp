@@ -4,14 +4,11 @@
 // which must equal offsetof on the C++ side; block sizes (and so array strides) must equal sizeof.
 #include <gtest/gtest.h>
 
-#include <glslang/Public/ResourceLimits.h>
-#include <glslang/Public/ShaderLang.h>
-
 #include <cstddef>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
+
+#include "glslang_support.h"
 
 #include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
@@ -19,27 +16,6 @@
 using namespace brume;
 
 namespace {
-
-// Resolves #include "x.h" from shaders/shared/, like glslangValidator -I in the build.
-class SharedIncluder : public glslang::TShader::Includer {
-public:
-    IncludeResult* includeLocal(const char* name, const char*, size_t) override {
-        std::ifstream in(std::string(BRUME_SOURCE_DIR) + "/shaders/shared/" + name);
-        if (!in) return nullptr;
-        std::stringstream ss;
-        ss << in.rdbuf();
-        auto* text = new std::string(ss.str());
-        return new IncludeResult(name, text->data(), text->size(), text);
-    }
-    IncludeResult* includeSystem(const char* name, const char* from, size_t depth) override {
-        return includeLocal(name, from, depth);
-    }
-    void releaseInclude(IncludeResult* r) override {
-        if (!r) return;
-        delete static_cast<std::string*>(r->userData);
-        delete r;
-    }
-};
 
 constexpr const char* kShader = R"(#version 450
 #extension GL_GOOGLE_include_directive : require
@@ -72,19 +48,10 @@ Reflected reflect() {
     glslang::InitializeProcess();
     {
         glslang::TShader shader(EShLangCompute);
-        shader.setStrings(&kShader, 1);
-        shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
-        shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_1);
-        shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_3);
-        SharedIncluder includer;
         glslang::TProgram program;
-        if (!shader.parse(GetDefaultResources(), 450, false, EShMsgDefault, includer)) {
-            out.log = shader.getInfoLog();
-        } else {
-            program.addShader(&shader);
-            if (!program.link(EShMsgDefault) || !program.buildReflection(EShReflectionAllBlockVariables)) {
-                out.log = program.getInfoLog();
-            }
+        out.log = test::compileAndReflect(shader, program, kShader, {std::string(BRUME_SOURCE_DIR) + "/shaders/shared"},
+                                          EShReflectionAllBlockVariables);
+        if (out.log.empty()) {
             for (int i = 0; i < program.getNumUniformVariables(); ++i)
                 out.offsets[program.getUniform(i).name] = program.getUniform(i).offset;
             for (int i = 0; i < program.getNumBufferVariables(); ++i) {

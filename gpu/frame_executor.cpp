@@ -1,0 +1,368 @@
+// The froxel frame's executor: everything the tables of frame_table.h imply, derived rather than
+// written per resource or per pass. Resources that follow the frame's sizes (dirty tracking), the
+// pipeline of each pass's variant, barriers from the passes' reads and writes, labels and timestamps,
+// the readback, and the submission.
+#include <chrono>
+
+#include "renderer_state.h"
+#include "shaders/shared/bindings.h"
+#include "shaders/shared/brume.h"
+#include "vk_check.h"
+
+namespace brume::gpu {
+namespace {
+
+VkExtent3D extentOf(glm::ivec3 d) {
+    return {static_cast<uint32_t>(d.x), static_cast<uint32_t>(d.y), static_cast<uint32_t>(d.z)};
+}
+
+uint32_t groups(int n, int size) { return static_cast<uint32_t>(shd::brumeDivRoundUp(n, size)); }
+
+// Froxel images are also copied (temporal pass) and read back (tests).
+constexpr VkImageUsageFlags kVolumeUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+
+void transition(VkCommandBuffer cmd, const std::vector<VkImage>& images, VkImageLayout from, VkImageLayout to,
+                VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                VkAccessFlags dstAccess) {
+    if (images.empty()) return;
+    std::vector<VkImageMemoryBarrier> barriers;
+    for (VkImage img : images) {
+        VkImageMemoryBarrier b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+        b.srcAccessMask = srcAccess;
+        b.dstAccessMask = dstAccess;
+        b.oldLayout = from;
+        b.newLayout = to;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = img;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        barriers.push_back(b);
+    }
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, static_cast<uint32_t>(barriers.size()),
+                         barriers.data());
+}
+
+void copyImageToBuffer(VkCommandBuffer cmd, const GpuImage& img, const Buffer& buf) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = img.extent;
+    vkCmdCopyImageToBuffer(cmd, img.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer.get(), 1, &region);
+}
+
+// The accesses a barrier waits for (writes) or makes visible to (reads and writes) in these stages.
+VkAccessFlags writeAccess(VkPipelineStageFlags stages) {
+    VkAccessFlags a = 0;
+    if (stages & (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT))
+        a |= VK_ACCESS_SHADER_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_TRANSFER_BIT) a |= VK_ACCESS_TRANSFER_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT) a |= VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    return a;
+}
+VkAccessFlags readWriteAccess(VkPipelineStageFlags stages) {
+    VkAccessFlags a = writeAccess(stages);
+    if (a & VK_ACCESS_SHADER_WRITE_BIT) a |= VK_ACCESS_SHADER_READ_BIT;
+    if (a & VK_ACCESS_TRANSFER_WRITE_BIT) a |= VK_ACCESS_TRANSFER_READ_BIT;
+    if (a & VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT) a |= VK_ACCESS_COLOR_ATTACHMENT_READ_BIT;
+    return a;
+}
+
+// Accesses recorded since the last barrier; a pass that reads or writes what an earlier one wrote,
+// or writes what an earlier one read, waits for all of them (one global barrier: the chain is
+// serial anyway, and lavapipe runs one pass at a time).
+class Hazards {
+public:
+    void wrote(ResRef r, VkPipelineStageFlags s) { writes_.push_back({r, s}); }
+    void read(ResRef r, VkPipelineStageFlags s) { reads_.push_back({r, s}); }
+    bool conflicts(const PassDecl& p) const {
+        for (const auto& [r, s] : writes_)
+            if (p.reads.contains(r) || p.writes.contains(r)) return true;
+        for (const auto& [r, s] : reads_)
+            if (p.writes.contains(r)) return true;
+        return false;
+    }
+    VkPipelineStageFlags writeStages() const { return stages(writes_); }
+    VkPipelineStageFlags allStages() const { return stages(writes_) | stages(reads_); }
+    void clear() { writes_.clear(), reads_.clear(); }
+
+private:
+    using Access = std::pair<ResRef, VkPipelineStageFlags>;
+    static VkPipelineStageFlags stages(const std::vector<Access>& v) {
+        VkPipelineStageFlags s = 0;
+        for (const auto& [r, st] : v) s |= st;
+        return s;
+    }
+    std::vector<Access> writes_, reads_;
+};
+
+}  // namespace
+
+const GpuImage& FrameResources::image(ResRef ref, int writeIndex) const {
+    switch (ref.kind) {
+        case ResRef::Kind::HistoryIn: return history[ref.index][static_cast<size_t>(1 - writeIndex)];
+        case ResRef::Kind::HistoryOut: return history[ref.index][static_cast<size_t>(writeIndex)];
+        default: return images[ref.index];
+    }
+}
+
+Result<void> GpuRenderer::State::ensureBuffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
+                                              const char* name, bool& dirty) {
+    if (b.buffer && b.size >= size) return {};
+    // Grow geometrically so that scenes gaining objects one by one (the editor) rarely reallocate.
+    const VkDeviceSize capacity = std::max(size, b.size * 2);
+    b = Buffer{};
+    Result<Buffer> nb = createBuffer(*device, capacity, usage, memory, name);
+    if (!nb) return nb.error();
+    b = std::move(nb.value());
+    dirty = true;
+    return {};
+}
+
+// Usage and memory follow the table's kind.
+Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty) {
+    const BufferDecl& d = decl(id);
+    VkBufferUsageFlags usage = d.kind == BufferKind::UNIFORM ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
+                                                             : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    Memory memory = hostWrites(d.kind) ? Memory::Upload : Memory::DeviceLocal;
+    if (d.kind == BufferKind::STORAGE_READBACK) {
+        usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;  // cleared with vkCmdFillBuffer each frame
+        memory = Memory::Readback;
+    }
+    return ensureBuffer(res[id], size, usage, memory, d.name, dirty);
+}
+
+Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool& dirty) {
+    if (res.froxelDims == dims) return {};
+    res.froxelDims = glm::ivec3(0);
+    for (const ImageDecl& d : kImages) {
+        if (d.shape != ImageShape::image3D) continue;
+        GpuImage& slot = res[d.id];
+        slot = GpuImage{};  // release before allocating: peak memory stays one set of volumes
+        Result<GpuImage> img = createImage(*device, extentOf(dims), true, vkFormat(d.format), kVolumeUsage, d.name);
+        if (!img) return img.error();
+        slot = std::move(img.value());
+    }
+    for (const HistoryDecl& d : kHistory) {
+        for (size_t k = 0; k < 2; ++k) {
+            GpuImage& slot = res.history[static_cast<size_t>(d.id)][k];
+            slot = GpuImage{};
+            Result<GpuImage> img = createImage(*device, extentOf(dims), true, vkFormat(d.format), kVolumeUsage,
+                                               std::string(d.name) + " " + std::to_string(k));
+            if (!img) return img.error();
+            slot = std::move(img.value());
+        }
+    }
+    res.historyUndefined = true;
+    res.froxelDims = dims;
+    dirty = true;
+    return {};
+}
+
+Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty) {
+    if (res.size == size) return {};
+    const VkExtent3D e{static_cast<uint32_t>(size.x), static_cast<uint32_t>(size.y), 1};
+    res.size = glm::ivec2(0);
+    for (const ImageDecl& d : kImages) {
+        if (d.shape != ImageShape::image2D) continue;
+        GpuImage& slot = res[d.id];
+        slot = GpuImage{};
+        VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        if (d.flags & image_flags::TARGET) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        if (d.flags & image_flags::OUTPUT) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        Result<GpuImage> img = createImage(*device, e, false, vkFormat(d.format), usage, d.name);
+        if (!img) return img.error();
+        slot = std::move(img.value());
+    }
+    res.outputReadback = Buffer{};
+    Result<Buffer> rb = createBuffer(*device, static_cast<VkDeviceSize>(size.x) * static_cast<VkDeviceSize>(size.y) * 16,
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::Readback, "output readback");
+    if (!rb) return rb.error();
+    res.outputReadback = std::move(rb.value());
+    res.size = size;
+    BRUME_TRY(geometry.attach(*device, res));
+    dirty = true;
+    return {};
+}
+
+Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
+    const VkDeviceSize bytes = static_cast<VkDeviceSize>(dims.x) * static_cast<VkDeviceSize>(dims.y) *
+                               static_cast<VkDeviceSize>(dims.z) * sizeof(glm::vec4);
+    size_t k = 0;
+    for (const ImageDecl& d : kImages) {
+        if (!(d.flags & image_flags::READBACK)) continue;
+        if (res.volumeReadback.size() <= k) res.volumeReadback.emplace_back();
+        bool unused = false;
+        BRUME_TRY(ensureBuffer(res.volumeReadback[k++], bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::Readback,
+                               (std::string(d.name) + " readback").c_str(), unused));
+    }
+    return {};
+}
+
+Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
+                                         size_t vertexBytes, int shadowReduction, size_t sunShadowBytes,
+                                         size_t localShadowBytes) {
+    bool dirty = false;
+    BRUME_TRY(ensureBuffer(BufferId::frame, sizeof(shd::FrameUniforms), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::previousFrame, sizeof(shd::FrameUniforms), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::counters, sizeof(shd::FroxelCounters), dirty));
+    // Storage buffers cannot be empty: keep room for at least one record.
+    BRUME_TRY(ensureBuffer(BufferId::volumes, std::max<size_t>(cs.volumes.size(), 1) * sizeof(shd::VolumeData), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::lights, std::max<size_t>(cs.lights.size(), 1) * sizeof(shd::LightData), dirty));
+    bool vertexDirty = false;
+    BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                           Memory::Upload, "geometry vertices", vertexDirty));
+    BRUME_TRY(ensureFroxelImages(dims, dirty));
+    BRUME_TRY(ensureScreenImages(size, dirty));
+    const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
+    res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
+    // Scenes with vdb grids keep room for each light's vdb layer (shared/vdb_shadow.h) after the
+    // analytic ones, whether or not this frame's request fills it.
+    bool anyGrid = false;
+    for (const DensityGridPtr& g : cs.grids) anyGrid = anyGrid || g != nullptr;
+    const size_t entries = static_cast<size_t>(cells.x) * static_cast<size_t>(cells.y) * static_cast<size_t>(cells.z) *
+                           std::max<size_t>(cs.lights.size(), 1) * (anyGrid ? 2 : 1);
+    BRUME_TRY(ensureBuffer(BufferId::shadowTransmittance, entries * sizeof(glm::vec4), dirty));
+    BRUME_TRY(ensureVdbGrids(cs, dirty));
+    BRUME_TRY(chooseVariant(cs));
+    // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
+    const glm::ivec3 c = shd::clusterDims(dims);
+    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(c.x * c.y * c.z) + 2 +
+                               2 * cs.lights.size();
+    BRUME_TRY(ensureBuffer(BufferId::lightClusters, clusterInts * sizeof(int), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::localShadowMaps, std::max<size_t>(localShadowBytes, 4), dirty));
+    if (dirty) writeDescriptorBindings(*device, bindings.set, res);
+    return {};
+}
+
+void dispatchPass(const PassContext& ctx) {
+    vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.pipeline->pipeline.get());
+    vkCmdBindDescriptorSets(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.bindings->pipelineLayout.get(), 0, 1,
+                            &ctx.bindings->set, 0, nullptr);
+    const FrameResources& r = *ctx.res;
+    switch (ctx.pass->dispatch) {
+        case Dispatch::Froxels:
+            vkCmdDispatch(ctx.cmd, groups(r.froxelDims.x, shd::FROXEL_GROUP_X), groups(r.froxelDims.y, shd::FROXEL_GROUP_Y),
+                          groups(r.froxelDims.z, shd::FROXEL_GROUP_Z));
+            break;
+        case Dispatch::Columns:
+            vkCmdDispatch(ctx.cmd, groups(r.froxelDims.x, shd::INTEGRATE_GROUP_X),
+                          groups(r.froxelDims.y, shd::INTEGRATE_GROUP_Y), 1);
+            break;
+        case Dispatch::Screen:
+            vkCmdDispatch(ctx.cmd, groups(r.size.x, shd::SCREEN_GROUP_X), groups(r.size.y, shd::SCREEN_GROUP_Y), 1);
+            break;
+        case Dispatch::ShadowCells:
+            vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
+                          groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
+            break;
+        case Dispatch::Raster: break;
+    }
+}
+
+Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar,
+                                             bool readBackVolumes, int historyWriteIndex) {
+    timer.reset(cmd);
+    const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    const VkAccessFlags computeRW = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    Hazards hazards;
+    vkCmdFillBuffer(cmd, res[BufferId::counters].buffer.get(), 0, VK_WHOLE_SIZE, 0);
+    hazards.wrote(BufferId::counters, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    // The images rewritten every frame start from UNDEFINED: their old contents are discarded; the
+    // previous frame finished before its fence was signalled, so nothing earlier needs waiting for.
+    std::vector<VkImage> frameImages;
+    for (const ImageDecl& d : kImages)
+        if (d.flags & image_flags::FRAME) frameImages.push_back(res[d.id].image.get());
+    transition(cmd, frameImages, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+               0, compute, computeRW);
+    // Last frame's temporal pass wrote the history this frame reads (and overwrites the other half).
+    memoryBarrier(cmd, compute, VK_ACCESS_SHADER_WRITE_BIT, compute, computeRW);
+    // The history outlives frames: only freshly created images start from UNDEFINED (a frame
+    // without history does not read them, see temporal.comp).
+    if (res.historyUndefined) {
+        std::vector<VkImage> history;
+        for (const auto& pair : res.history)
+            for (const GpuImage& img : pair) history.push_back(img.image.get());
+        transition(cmd, history, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                   0, compute, computeRW);
+        res.historyUndefined = false;
+    }
+
+    const VkPipelineLayout layout = bindings.pipelineLayout.get();
+    for (const PassDecl& p : kPasses) {
+        if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) continue;
+        PassContext ctx;
+        ctx.cmd = cmd;
+        ctx.pass = &p;
+        ctx.bindings = &bindings;
+        ctx.res = &res;
+        ctx.historyWriteIndex = historyWriteIndex;
+        ctx.debugParams = debugParams;
+        ctx.ambient = ambient;
+        ctx.cameraFar = cameraFar;
+        ctx.vertexCount = vertexCount;
+        if (p.dispatch != Dispatch::Raster) {
+            Result<const ComputePass*> pipeline =
+                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant));
+            if (!pipeline) return pipeline.error();
+            ctx.pipeline = pipeline.value();
+        }
+        // The start timestamp goes before the barrier (timing.h).
+        timer.begin(cmd, p.label);
+        const VkPipelineStageFlags stages = passStages(p);
+        if (hazards.conflicts(p)) {
+            memoryBarrier(cmd, hazards.allStages(), writeAccess(hazards.writeStages()), stages, readWriteAccess(stages));
+            hazards.clear();
+        }
+        switch (p.record) {
+            case Record::Dispatch: dispatchPass(ctx); break;
+            case Record::Geometry: geometry.record(ctx); break;
+            case Record::TemporalCopy: recordTemporal(ctx); break;
+            case Record::DebugView: recordDebugView(ctx); break;
+        }
+        for (ResRef r : p.reads) hazards.read(r, stages);
+        for (ResRef r : p.writes) hazards.wrote(r, stages);
+        timer.end(cmd);
+    }
+    recordReadback(readBackVolumes);
+    return {};
+}
+
+void GpuRenderer::State::recordReadback(bool readBackVolumes) {
+    timer.begin(cmd, "readback");
+    std::vector<VkImage> sources;
+    std::vector<std::pair<const GpuImage*, const Buffer*>> copies;
+    size_t k = 0;
+    for (const ImageDecl& d : kImages) {
+        const Buffer* dst = nullptr;
+        if (d.flags & image_flags::OUTPUT) dst = &res.outputReadback;
+        if ((d.flags & image_flags::READBACK) && readBackVolumes) dst = &res.volumeReadback[k];
+        if (d.flags & image_flags::READBACK) ++k;
+        if (!dst) continue;
+        sources.push_back(res[d.id].image.get());
+        copies.push_back({&res[d.id], dst});
+    }
+    transition(cmd, sources, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+               VK_ACCESS_TRANSFER_READ_BIT);
+    for (const auto& [img, buf] : copies) copyImageToBuffer(cmd, *img, *buf);
+    // Counters (light pass) and copies, to the host.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                  VK_ACCESS_HOST_READ_BIT);
+    timer.end(cmd);
+}
+
+Result<double> GpuRenderer::State::submitAndWait() {
+    VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    const VkFence f = fence.get();
+    BRUME_VK(vkResetFences(device->vk(), 1, &f), "reset a fence");
+    const auto start = std::chrono::steady_clock::now();
+    BRUME_VK(vkQueueSubmit(device->queue(), 1, &submit, f), "submit the frame");
+    BRUME_VK(vkWaitForFences(device->vk(), 1, &f, VK_TRUE, UINT64_MAX), "wait for the frame to finish");
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace brume::gpu

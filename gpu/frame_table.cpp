@@ -1,0 +1,113 @@
+// The pass table: the froxel frame's passes in execution order, each with what it reads and writes
+// (the executor, frame_executor.cpp, derives the barriers from these lists), its dispatch rule and its
+// shader variants. Adding a pass is one entry here, its shader, and (only if it needs more than bind
+// + dispatch) its record code in a pass_*.cpp file.
+#include "frame_table.h"
+
+#include "shaders/shared/brume.h"
+
+namespace brume::gpu {
+namespace {
+
+using B = BufferId;
+using I = ImageId;
+using H = HistoryId;
+
+}  // namespace
+
+// clang-format off
+const std::array<PassDecl, 8> kPasses{{
+    // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
+    // light pass and the geometry pass's surfaces read it.
+    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
+     {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
+     {B::shadowTransmittance}},
+    // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
+    // fog's shadow and the shadow maps; sky = ambient at the camera far.
+    {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
+     {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
+     {I::sceneColor, I::sceneDepth}},
+    // Media of every volume at each froxel's sample point.
+    {"voxelize", "voxelize", Variant::Voxelize, Dispatch::Froxels, When::Always, Record::Dispatch,
+     {B::frame, B::volumes, B::vdbGrids},
+     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission}},
+    // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission.
+    {"light", "light", Variant::None, Dispatch::Froxels, When::Always, Record::Dispatch,
+     {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
+      I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
+     {I::sourceImage, B::counters}},
+    // S and sigma_t blended with the reprojected history (shared/temporal.h), then copied back over
+    // sourceImage and mediaExtinction for the integrate pass.
+    {"temporal", "temporal", Variant::None, Dispatch::Froxels, When::Always, Record::TemporalCopy,
+     {B::frame, B::previousFrame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource),
+      historyIn(H::historyExtinction)},
+     {historyOut(H::historySource), historyOut(H::historyExtinction), I::sourceImage, I::mediaExtinction}},
+    // Front to back along each froxel column (closed-form slabs).
+    {"integrate", "integrate", Variant::None, Dispatch::Columns, When::Always, Record::Dispatch,
+     {B::frame, I::sourceImage, I::mediaExtinction},
+     {I::integratedScattering, I::integratedTransmittance}},
+    // Fog over the surfaces, continued in closed form past the froxel far (shared/distant.h).
+    {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
+     {B::frame, B::volumes, B::lights, B::lightClusters, I::integratedScattering, I::integratedTransmittance,
+      I::sceneColor, I::sceneDepth},
+     {I::outputImage}},
+    // One depth slice of density, scattering or transmittance over the output (only when asked).
+    {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,
+     {B::frame, I::mediaExtinction, I::sourceImage, I::integratedTransmittance},
+     {I::outputImage}},
+}};
+// clang-format on
+
+VkFormat vkFormat(ImageFormat f) {
+    return f == ImageFormat::r32f ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+VkDescriptorType descriptorType(BufferKind k) {
+    return k == BufferKind::UNIFORM ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+bool hostWrites(BufferKind k) { return k == BufferKind::UNIFORM || k == BufferKind::STORAGE;
+}
+
+std::array<BindingDecl, kBindingCount> bindingTable() {
+    std::array<BindingDecl, kBindingCount> t{};
+    for (BindingDecl& b : t) b.binding = -1;
+    auto put = [&](int binding, BindingDecl d) {
+        if (binding >= 0 && binding < kBindingCount) t[static_cast<size_t>(binding)] = d;
+    };
+    // Buffers are named by their GLSL block, images by their variable.
+#define BRUME_CPP_BUFFER_BINDING(id, binding, kind, layout, qualifiers, block, body) \
+    put(binding, {binding, #block, descriptorType(BufferKind::kind), false, ImageFormat::rgba32f});
+    BRUME_FRAME_BUFFERS(BRUME_CPP_BUFFER_BINDING)
+#undef BRUME_CPP_BUFFER_BINDING
+    for (const ImageDecl& d : kImages) put(d.binding, {d.binding, d.name, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format});
+    for (const HistoryDecl& d : kHistory) {
+        put(d.inBinding, {d.inBinding, d.inName, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format});
+        put(d.outBinding, {d.outBinding, d.outName, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format});
+    }
+    return t;
+}
+
+std::string variantShaderName(const char* shader, Variant v, const VariantKey& k) {
+    std::string name = shader;
+    const bool quantized = k.vdb && k.encoding != VdbEncoding::Float;
+    if (v == Variant::Voxelize) {
+        if (k.vdb) name += "_vdb";
+        if (k.textures) name += "_texture";
+        if (quantized) name += std::string("_") + toString(k.encoding);
+    } else if (v == Variant::ShadowVolume && k.vdb) {
+        name += "_vdb";
+        if (quantized) name += std::string("_") + toString(k.encoding);
+    }
+    return name + ".comp";
+}
+
+VkPipelineStageFlags passStages(const PassDecl& p) {
+    if (p.dispatch == Dispatch::Raster)
+        return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    if (p.record == Record::TemporalCopy) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+}
+
+}  // namespace brume::gpu

@@ -1,0 +1,198 @@
+// The GPU froxel frame as data: the resource tables of shaders/shared/frame_table.h expanded for C++,
+// and the pass table (frame_table.cpp) that names what each pass reads and writes. The executor
+// (frame_executor.cpp) derives the rest: creation and debug names, the descriptor layout, pool and
+// writes, layout transitions, barriers, labels, timestamps, the readback order, and one pipeline per
+// shader variant. Not a general render graph: the chain is fixed and short, nothing is aliased and
+// everything runs on one queue.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+#include "core/density_grid.h"
+#include "shaders/shared/frame_table.h"
+
+namespace brume::gpu {
+
+// ---- Resources (expanded from shaders/shared/frame_table.h) ----
+
+enum class BufferId : uint8_t {
+#define BRUME_CPP_BUFFER_ID(id, ...) id,
+    BRUME_FRAME_BUFFERS(BRUME_CPP_BUFFER_ID)
+#undef BRUME_CPP_BUFFER_ID
+};
+enum class ImageId : uint8_t {
+#define BRUME_CPP_IMAGE_ID(id, ...) id,
+    BRUME_FRAME_IMAGES(BRUME_CPP_IMAGE_ID)
+#undef BRUME_CPP_IMAGE_ID
+};
+enum class HistoryId : uint8_t {
+#define BRUME_CPP_HISTORY_ID(id, ...) id,
+    BRUME_FRAME_HISTORY(BRUME_CPP_HISTORY_ID)
+#undef BRUME_CPP_HISTORY_ID
+};
+
+// The table's kind, format and shape tokens, given meaning.
+enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBACK };
+enum class ImageFormat : uint8_t { rgba32f, r32f };
+enum class ImageShape : uint8_t { image2D, image3D };
+namespace image_flags {
+inline constexpr unsigned FRAME = 1u, READBACK = 2u, TARGET = 4u, OUTPUT = 8u;
+inline constexpr unsigned FRAME_READBACK = FRAME | READBACK, FRAME_OUTPUT = FRAME | OUTPUT;
+}  // namespace image_flags
+
+struct BufferDecl {
+    BufferId id;
+    const char* name;
+    int binding;
+    BufferKind kind;
+};
+struct ImageDecl {
+    ImageId id;
+    const char* name;
+    int binding;
+    ImageFormat format;
+    ImageShape shape;  // image3D: the froxel grid; image2D: the screen
+    unsigned flags;    // image_flags
+};
+struct HistoryDecl {
+    HistoryId id;
+    const char* name;
+    const char* inName;
+    int inBinding;
+    const char* outName;
+    int outBinding;
+    ImageFormat format;
+};
+
+inline constexpr std::array kBuffers{
+#define BRUME_CPP_BUFFER(id, binding, kind, layout, qualifiers, block, body) \
+    BufferDecl{BufferId::id, #id, binding, BufferKind::kind},
+    BRUME_FRAME_BUFFERS(BRUME_CPP_BUFFER)
+#undef BRUME_CPP_BUFFER
+};
+inline constexpr std::array kImages{
+#define BRUME_CPP_IMAGE(id, binding, format, shape, flags) \
+    ImageDecl{ImageId::id, #id, binding, ImageFormat::format, ImageShape::shape, image_flags::flags},
+    BRUME_FRAME_IMAGES(BRUME_CPP_IMAGE)
+#undef BRUME_CPP_IMAGE
+};
+inline constexpr std::array kHistory{
+#define BRUME_CPP_HISTORY(id, inName, inBinding, outName, outBinding, format, shape) \
+    HistoryDecl{HistoryId::id, #id, #inName, inBinding, #outName, outBinding, ImageFormat::format},
+    BRUME_FRAME_HISTORY(BRUME_CPP_HISTORY)
+#undef BRUME_CPP_HISTORY
+};
+inline constexpr int kBindingCount = static_cast<int>(kBuffers.size() + kImages.size() + 2 * kHistory.size());
+
+constexpr const BufferDecl& decl(BufferId id) { return kBuffers[static_cast<size_t>(id)]; }
+constexpr const ImageDecl& decl(ImageId id) { return kImages[static_cast<size_t>(id)]; }
+constexpr const HistoryDecl& decl(HistoryId id) { return kHistory[static_cast<size_t>(id)]; }
+
+VkFormat vkFormat(ImageFormat f);
+VkDescriptorType descriptorType(BufferKind k);
+// Whether the host fills the buffer (mapped upload memory) rather than the passes.
+bool hostWrites(BufferKind k);
+
+// One descriptor binding of the set, whatever resource is behind it (tests check these against the
+// shaders' reflection).
+struct BindingDecl {
+    int binding;
+    const char* glslName;  // the variable (images) or block (buffers) name in GLSL
+    VkDescriptorType type;
+    bool image;
+    ImageFormat format;  // images only
+};
+std::array<BindingDecl, kBindingCount> bindingTable();
+
+// ---- Passes ----
+
+// A resource a pass reads or writes. History: the pair's input (read) or output (written) side.
+struct ResRef {
+    enum class Kind : uint8_t { None, Buffer, Image, HistoryIn, HistoryOut } kind = Kind::None;
+    uint8_t index = 0;
+    constexpr ResRef() = default;
+    constexpr ResRef(BufferId b) : kind(Kind::Buffer), index(static_cast<uint8_t>(b)) {}
+    constexpr ResRef(ImageId i) : kind(Kind::Image), index(static_cast<uint8_t>(i)) {}
+    constexpr ResRef(Kind k, uint8_t i) : kind(k), index(i) {}
+    constexpr bool operator==(const ResRef&) const = default;
+};
+constexpr ResRef historyIn(HistoryId h) { return {ResRef::Kind::HistoryIn, static_cast<uint8_t>(h)}; }
+constexpr ResRef historyOut(HistoryId h) { return {ResRef::Kind::HistoryOut, static_cast<uint8_t>(h)}; }
+
+struct ResList {
+    std::array<ResRef, 12> items{};
+    int count = 0;
+    constexpr ResList(std::initializer_list<ResRef> list) {
+        for (ResRef r : list) items[static_cast<size_t>(count++)] = r;
+    }
+    constexpr const ResRef* begin() const { return items.data(); }
+    constexpr const ResRef* end() const { return items.data() + count; }
+    constexpr bool contains(ResRef r) const {
+        for (ResRef x : *this)
+            if (x == r) return true;
+        return false;
+    }
+};
+
+// How many invocations a compute pass runs (workgroup sizes: shaders/shared/types.h).
+enum class Dispatch : uint8_t {
+    Froxels,      // one per froxel, FROXEL_GROUP_*
+    Columns,      // one per froxel column, INTEGRATE_GROUP_*
+    Screen,       // one per pixel, SCREEN_GROUP_*
+    ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
+    Raster,       // the geometry pass's draw (not a dispatch)
+};
+
+// Which shader variants exist (shaders/CMakeLists.txt builds one SPIR-V per variant).
+enum class Variant : uint8_t {
+    None,          // the shader as named
+    Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
+    ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding
+};
+
+// What selects a variant; one per frame.
+struct VariantKey {
+    bool vdb = false;       // the scene has vdb volumes
+    bool textures = false;  // some volume has a density texture
+    VdbEncoding encoding = VdbEncoding::Float;
+    bool operator==(const VariantKey&) const = default;
+};
+
+// The embedded SPIR-V name of `shader`'s variant for key k, e.g. "voxelize_vdb_texture_fp16.comp".
+std::string variantShaderName(const char* shader, Variant v, const VariantKey& k);
+
+// Whether a pass runs this frame.
+enum class When : uint8_t { Always, DebugView };
+
+// Pass-specific recording beyond bind + dispatch (pass_*.cpp).
+enum class Record : uint8_t {
+    Dispatch,      // bind the pipeline and the set, dispatch by the rule
+    Geometry,      // the raster pass (pass_geometry.cpp)
+    TemporalCopy,  // dispatch, then copy the history's output over source and extinction (pass_temporal.cpp)
+    DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
+};
+
+struct PassDecl {
+    const char* label;   // debug label and timing name
+    const char* shader;  // base shader name (without ".comp"); the raster pass names its own
+    Variant variant;
+    Dispatch dispatch;
+    When when;
+    Record record;
+    ResList reads;
+    ResList writes;
+};
+
+// In execution order; the reads and writes of each entry decide the barriers before it.
+extern const std::array<PassDecl, 8> kPasses;
+
+// Pipeline stages a pass runs in (barriers).
+VkPipelineStageFlags passStages(const PassDecl& p);
+
+}  // namespace brume::gpu

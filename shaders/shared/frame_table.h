@@ -1,0 +1,82 @@
+// The GPU froxel frame's resources, declared once for GLSL and C++ as X-macro tables: the one
+// descriptor set (set 0) every pass shares. shaders/resources.glsl expands them into the GLSL
+// declarations; gpu/frame_table.h expands them into the renderer's resource table, from which
+// gpu/frame_executor.cpp derives creation, debug names, the descriptor layout, pool and writes,
+// layout transitions and the readback (docs/gpu.md, "The frame as data"). Not used by the CPU.
+//
+// Adding a froxel image is one line in BRUME_FRAME_IMAGES with the next free binding (then use it in
+// a shader and name it in a pass's reads or writes in gpu/frame_table.cpp); tests/test_frame_table.cpp
+// checks that the bindings are 0..N-1 without gaps and every shader's bindings against these tables.
+//
+// Columns are plain tokens so that both preprocessors can pass them through: GLSL uses the layout
+// and block columns, C++ the kind and flag columns (gpu/frame_table.h gives them meaning).
+#ifndef BRUME_SHARED_FRAME_TABLE_H
+#define BRUME_SHARED_FRAME_TABLE_H
+
+// Buffers: X(id, binding, kind, glsl layout, glsl qualifiers, block name, block body).
+//   kind UNIFORM: a uniform buffer the host writes; STORAGE: a storage buffer the host writes;
+//   STORAGE_GPU: one the passes write; STORAGE_READBACK: one the passes write and the host reads.
+//   Sizes follow the scene (volumes, lights, grids, shadow maps): GpuRenderer::State::prepare.
+#define BRUME_FRAME_BUFFERS(X) \
+    X(frame, 0, UNIFORM, std140, uniform, FrameBlock, FrameUniforms frame;) \
+    X(volumes, 1, STORAGE, std430, readonly buffer, VolumeBlock, VolumeData volumes[];) \
+    X(lights, 2, STORAGE, std430, readonly buffer, LightBlock, LightData lights[];) \
+    X(counters, 3, STORAGE_READBACK, std430, buffer, CounterBlock, FroxelCounters counters;) \
+    X(previousFrame, 4, UNIFORM, std140, uniform, PreviousFrameBlock, FrameUniforms previousFrame;) \
+    X(shadowTransmittance, 5, STORAGE_GPU, std430, buffer, ShadowBlock, vec4 shadowTransmittance[];) \
+    X(vdbGrids, 6, STORAGE, std430, readonly buffer, VdbGridBlock, uint vdbGridWords[];) \
+    X(lightClusters, 7, STORAGE, std430, readonly buffer, ClusterBlock, int lightClusters[];) \
+    X(sunShadowMap, 8, STORAGE, std430, readonly buffer, SunShadowBlock, SunShadowFit sunShadowFit; float sunShadowDepth[];) \
+    X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];)
+
+// What the buffers hold:
+//   frame               FrameUniforms of this frame (types.h)
+//   volumes, lights     VolumeData[], LightData[] (at least one entry each)
+//   counters            FroxelCounters (bindings.h), counted by the light pass, read back by the host
+//   previousFrame       FrameUniforms of the previous frame (temporal pass)
+//   shadowTransmittance vec4[]: the fog transmittance volume (shadow_volume.h shadowVolumeIndex); a
+//                       buffer, not an image: lavapipe's imageLoad is ~3x dearer, and the geometry
+//                       pass reads it
+//   vdbGrids            uint[]: every vdb volume's NanoVDB grid back to back (VolumeData.kind.y: byte
+//                       offset), read with PNanoVDB
+//   lightClusters       int[]: light lists per cluster and the light reach record (clusters.h)
+//   sunShadowMap        SunShadowFit, then float depth[N * N] (sun_shadow.h), built on the host
+//   localShadowMaps     float[]: every point/spot shadow map face (local_shadow.h), built on the host
+
+// Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
+//   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
+//   FRAME: rewritten every frame (contents discarded at its start);
+//   READBACK: copied to the host when render() is asked for the froxel volumes (FroxelVolumes order);
+//   TARGET: also a colour attachment of the geometry pass (it clears and writes it);
+//   OUTPUT: the composited image, read back every frame.
+#define BRUME_FRAME_IMAGES(X) \
+    X(mediaScatteringG, 10, rgba32f, image3D, FRAME_READBACK) \
+    X(mediaExtinction, 11, rgba32f, image3D, FRAME_READBACK) \
+    X(mediaEmission, 12, rgba32f, image3D, FRAME_READBACK) \
+    X(sourceImage, 13, rgba32f, image3D, FRAME_READBACK) \
+    X(integratedScattering, 14, rgba32f, image3D, FRAME_READBACK) \
+    X(integratedTransmittance, 15, rgba32f, image3D, FRAME_READBACK) \
+    X(sceneColor, 16, rgba32f, image2D, TARGET) \
+    X(sceneDepth, 17, r32f, image2D, TARGET) \
+    X(outputImage, 18, rgba32f, image2D, FRAME_OUTPUT)
+
+// What the images hold:
+//   mediaScatteringG       rgb sigma_s [1/m], a phase g        (voxelize)
+//   mediaExtinction        rgb sigma_t [1/m]                   (voxelize; temporal resolves it)
+//   mediaEmission          rgb emission                         (voxelize)
+//   sourceImage            rgb source S                         (light; temporal resolves it)
+//   integratedScattering   camera -> far side of each slice     (integrate)
+//   integratedTransmittance                                     (integrate)
+//   sceneColor             shaded surfaces / sky radiance       (geometry)
+//   sceneDepth             view depth [m], camera far = sky     (geometry)
+//   outputImage            the composited image                 (composite, debug view)
+
+// Temporal history: ping-pong pairs of froxel images kept across frames,
+// X(id, input name, input binding, output name, output binding, glsl format, glsl type).
+// Each frame reads the pair's *_IN side (what the previous frame wrote) and writes its *_OUT side;
+// the renderer swaps which image sits behind each binding every frame.
+#define BRUME_FRAME_HISTORY(X) \
+    X(historySource, historySourceIn, 19, historySourceOut, 20, rgba32f, image3D) \
+    X(historyExtinction, historyExtinctionIn, 21, historyExtinctionOut, 22, rgba32f, image3D)
+
+#endif

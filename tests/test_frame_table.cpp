@@ -1,0 +1,173 @@
+// The GPU frame's tables (gpu/frame_table.h, shaders/shared/frame_table.h) against the shaders:
+// every shader is compiled with glslang and its reflected descriptor bindings must be the table's
+// (same binding, name and descriptor type), and every binding a pass's shader uses must be in that
+// pass's reads or writes, from which the executor derives the barriers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+
+#include "glslang_support.h"
+#include "gpu/frame_table.h"
+
+using namespace brume;
+using namespace brume::gpu;
+
+namespace {
+
+const std::string kShaders = std::string(BRUME_SOURCE_DIR) + "/shaders";
+
+struct ReflectedBinding {
+    int binding;
+    std::string name;
+    bool image;  // else a block (glslang lists storage blocks among the uniform blocks too: the
+                 // table's block names tell uniform from storage)
+};
+
+struct ReflectedShader {
+    std::string log;
+    std::vector<ReflectedBinding> bindings;
+};
+
+std::string readShader(const std::string& name) {
+    std::ifstream in(kShaders + "/" + name);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+EShLanguage stageOf(const std::string& name) {
+    if (name.ends_with(".vert")) return EShLangVertex;
+    if (name.ends_with(".frag")) return EShLangFragment;
+    return EShLangCompute;
+}
+
+ReflectedShader compileShader(const std::string& name) {
+    ReflectedShader out;
+    glslang::InitializeProcess();
+    {
+        glslang::TShader shader(stageOf(name));
+        glslang::TProgram program;
+        out.log = test::compileAndReflect(shader, program, readShader(name),
+                                          {kShaders + "/shared", kShaders, BRUME_NANOVDB_INCLUDE},
+                                          EShReflectionDefault);
+        if (out.log.empty()) {
+            for (int i = 0; i < program.getNumUniformVariables(); ++i) {
+                const glslang::TObjectReflection& u = program.getUniform(i);
+                // Members of blocks carry their block's index; the rest are the storage images.
+                if (u.index < 0) out.bindings.push_back({u.getBinding(), u.name, true});
+            }
+            // Push constant blocks have no binding (the debug view's parameters).
+            for (int i = 0; i < program.getNumUniformBlocks(); ++i)
+                if (program.getUniformBlock(i).getBinding() >= 0)
+                    out.bindings.push_back({program.getUniformBlock(i).getBinding(), program.getUniformBlock(i).name, false});
+            for (int i = 0; i < program.getNumBufferBlocks(); ++i)
+                if (program.getBufferBlock(i).getBinding() >= 0)
+                    out.bindings.push_back({program.getBufferBlock(i).getBinding(), program.getBufferBlock(i).name, false});
+        }
+    }
+    glslang::FinalizeProcess();
+    return out;
+}
+
+// Compiling with PNanoVDB takes a second: each file once per test run.
+const ReflectedShader& reflectShader(const std::string& name) {
+    static std::map<std::string, ReflectedShader> cache;
+    auto it = cache.find(name);
+    if (it == cache.end()) it = cache.emplace(name, compileShader(name)).first;
+    return it->second;
+}
+
+std::vector<std::string> shaderFiles() {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(kShaders)) {
+        const std::string n = e.path().filename().string();
+        if (n.ends_with(".comp") || n.ends_with(".vert") || n.ends_with(".frag")) names.push_back(n);
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+// The binding(s) behind a pass's resource reference.
+int bindingOf(ResRef r) {
+    switch (r.kind) {
+        case ResRef::Kind::Buffer: return kBuffers[r.index].binding;
+        case ResRef::Kind::Image: return kImages[r.index].binding;
+        case ResRef::Kind::HistoryIn: return kHistory[r.index].inBinding;
+        case ResRef::Kind::HistoryOut: return kHistory[r.index].outBinding;
+        case ResRef::Kind::None: break;
+    }
+    return -1;
+}
+
+TEST(FrameTable, BindingsAreDenseAndNamedOnce) {
+    const auto table = bindingTable();
+    std::set<std::string> names;
+    for (size_t i = 0; i < table.size(); ++i) {
+        EXPECT_EQ(table[i].binding, static_cast<int>(i)) << "binding " << i << " is missing from frame_table.h";
+        if (table[i].glslName) {
+            EXPECT_TRUE(names.insert(table[i].glslName).second) << table[i].glslName;
+        }
+    }
+}
+
+TEST(FrameTable, EveryShaderUsesTheTablesBindings) {
+    const auto table = bindingTable();
+    const auto files = shaderFiles();
+    ASSERT_GE(files.size(), 10u);
+    for (const std::string& file : files) {
+        const ReflectedShader& s = reflectShader(file);
+        ASSERT_TRUE(s.log.empty()) << file << ": " << s.log;
+        for (const ReflectedBinding& b : s.bindings) {
+            ASSERT_GE(b.binding, 0) << file << ": " << b.name;
+            ASSERT_LT(b.binding, kBindingCount) << file << ": " << b.name;
+            const BindingDecl& d = table[static_cast<size_t>(b.binding)];
+            EXPECT_EQ(b.name, d.glslName) << file << ": binding " << b.binding;
+            EXPECT_EQ(b.image, d.image) << file << ": " << b.name;
+        }
+    }
+}
+
+// A pass that touched a resource its table entry does not list would get no barrier for it.
+TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
+    const VariantKey variants[] = {{}, {true, true, VdbEncoding::Float}, {true, false, VdbEncoding::Fp16}};
+    for (const PassDecl& p : kPasses) {
+        std::set<std::string> sources;
+        if (p.dispatch == Dispatch::Raster) {
+            sources = {"geometry.vert", "geometry.frag"};
+        } else {
+            // Variants built with -D defines (shaders/CMakeLists.txt) share their source's bindings.
+            for (const VariantKey& k : variants) {
+                std::string n = variantShaderName(p.shader, p.variant, k);
+                for (const char* e : {"_fp16", "_fp8"})
+                    if (auto at = n.find(e); at != std::string::npos) n.erase(at, std::string(e).size());
+                sources.insert(n);
+            }
+        }
+        std::set<int> listed;
+        for (ResRef r : p.reads) listed.insert(bindingOf(r));
+        for (ResRef r : p.writes) listed.insert(bindingOf(r));
+        for (const std::string& file : sources) {
+            const ReflectedShader& s = reflectShader(file);
+            ASSERT_TRUE(s.log.empty()) << file << ": " << s.log;
+            for (const ReflectedBinding& b : s.bindings)
+                EXPECT_TRUE(listed.count(b.binding)) << "pass '" << p.label << "' (" << file << ") uses " << b.name
+                                                     << " but frame_table.cpp does not list it";
+        }
+    }
+}
+
+TEST(FrameTable, VariantNamesFollowTheBuild) {
+    EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {}), "voxelize.comp");
+    EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {true, true, VdbEncoding::Fp16}),
+              "voxelize_vdb_texture_fp16.comp");
+    EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {false, true, VdbEncoding::Float}), "voxelize_texture.comp");
+    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, {true, true, VdbEncoding::Fp8}),
+              "shadow_volume_vdb_fp8.comp");
+    EXPECT_EQ(variantShaderName("light", Variant::None, {true, true, VdbEncoding::Fp8}), "light.comp");
+}
+
+}  // namespace
