@@ -1,6 +1,8 @@
 #include "pipeline.h"
 
+#include <algorithm>
 #include <array>
+#include <vector>
 
 #include "frame_resources.h"
 #include "shaders/shared/bindings.h"
@@ -23,7 +25,6 @@ VkDescriptorType bindingType(int binding) {
 }  // namespace
 
 Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
-    DescriptorBindings b;
     std::array<VkDescriptorSetLayoutBinding, shd::BINDING_COUNT> bindings{};
     for (int i = 0; i < shd::BINDING_COUNT; ++i) {
         // Only the buffers reach the geometry pass: devices may allow as few as 4 storage images
@@ -34,46 +35,54 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
                                                     VK_SHADER_STAGE_FRAGMENT_BIT;
         bindings[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), bindingType(i), 1, stages, nullptr};
     }
+    // The push constants are the debug view pass's parameters; the other passes ignore them.
+    return createDescriptorSet(device, bindings, sizeof(shd::DebugViewParams), "froxel");
+}
+
+Result<DescriptorBindings> createDescriptorSet(const Device& device, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                               uint32_t pushBytes, const std::string& name) {
+    DescriptorBindings b;
     VkDescriptorSetLayoutCreateInfo layoutInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
     layoutInfo.pBindings = bindings.data();
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    BRUME_VK(vkCreateDescriptorSetLayout(device.vk(), &layoutInfo, nullptr, &setLayout), "create the descriptor set layout");
+    BRUME_VK(vkCreateDescriptorSetLayout(device.vk(), &layoutInfo, nullptr, &setLayout), "create the " + name + " descriptor set layout");
     b.setLayout = DescriptorSetLayoutOwner(device.vk(), setLayout);
-    device.name(setLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "froxel bindings layout");
+    device.name(setLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name + " bindings layout");
 
     VkPipelineLayoutCreateInfo plInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     plInfo.setLayoutCount = 1;
     plInfo.pSetLayouts = &setLayout;
-    // The debug view pass's parameters; the other passes ignore them.
-    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(shd::DebugViewParams)};
-    plInfo.pushConstantRangeCount = 1;
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
+    plInfo.pushConstantRangeCount = pushBytes > 0 ? 1 : 0;
     plInfo.pPushConstantRanges = &push;
     VkPipelineLayout pl = VK_NULL_HANDLE;
-    BRUME_VK(vkCreatePipelineLayout(device.vk(), &plInfo, nullptr, &pl), "create the pipeline layout");
+    BRUME_VK(vkCreatePipelineLayout(device.vk(), &plInfo, nullptr, &pl), "create the " + name + " pipeline layout");
     b.pipelineLayout = PipelineLayoutOwner(device.vk(), pl);
-    device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "froxel pipeline layout");
+    device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name + " pipeline layout");
 
-    const std::array<VkDescriptorPoolSize, 3> sizes{{
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, static_cast<uint32_t>(shd::BINDING_COUNT - 10)},
-    }};
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (const VkDescriptorSetLayoutBinding& binding : bindings) {
+        auto same = [&](const VkDescriptorPoolSize& s) { return s.type == binding.descriptorType; };
+        auto it = std::find_if(sizes.begin(), sizes.end(), same);
+        if (it == sizes.end()) sizes.push_back({binding.descriptorType, binding.descriptorCount});
+        else it->descriptorCount += binding.descriptorCount;
+    }
     VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = 1;
     poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
     poolInfo.pPoolSizes = sizes.data();
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    BRUME_VK(vkCreateDescriptorPool(device.vk(), &poolInfo, nullptr, &pool), "create the descriptor pool");
+    BRUME_VK(vkCreateDescriptorPool(device.vk(), &poolInfo, nullptr, &pool), "create the " + name + " descriptor pool");
     b.pool = DescriptorPoolOwner(device.vk(), pool);
-    device.name(pool, VK_OBJECT_TYPE_DESCRIPTOR_POOL, "froxel descriptor pool");
+    device.name(pool, VK_OBJECT_TYPE_DESCRIPTOR_POOL, name + " descriptor pool");
 
     VkDescriptorSetAllocateInfo alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
     alloc.descriptorPool = pool;
     alloc.descriptorSetCount = 1;
     alloc.pSetLayouts = &setLayout;
-    BRUME_VK(vkAllocateDescriptorSets(device.vk(), &alloc, &b.set), "allocate the descriptor set");
-    device.name(b.set, VK_OBJECT_TYPE_DESCRIPTOR_SET, "froxel bindings");
+    BRUME_VK(vkAllocateDescriptorSets(device.vk(), &alloc, &b.set), "allocate the " + name + " descriptor set");
+    device.name(b.set, VK_OBJECT_TYPE_DESCRIPTOR_SET, name + " bindings");
     return b;
 }
 

@@ -2,6 +2,7 @@
 // pipeline layout, shader modules from the embedded SPIR-V, compute pipelines and barriers.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "resources.h"
@@ -18,6 +19,12 @@ struct DescriptorBindings {
 };
 
 Result<DescriptorBindings> createDescriptorBindings(const Device& device);
+
+// One descriptor set of `bindings`: its layout, a pipeline layout with one compute push-constant
+// range of `pushBytes` (0: none), a pool sized for exactly those descriptors, and the set; debug
+// names start with `name`.
+Result<DescriptorBindings> createDescriptorSet(const Device& device, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                               uint32_t pushBytes, const std::string& name);
 
 // Points every binding at the current resources; call after any of them is recreated.
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r);
