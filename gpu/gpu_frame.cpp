@@ -249,14 +249,16 @@ void GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, fl
 
 void GpuRenderer::State::recordReadback(bool readBackVolumes) {
     timer.begin(cmd, "readback");
-    std::vector<VkImage> sources{res.output.image.get()};
+    std::vector<VkImage> sources;
+    if (readBackImage) sources.push_back(res.output.image.get());
     const auto volumes = froxelImages(res);
     if (readBackVolumes)
         for (const GpuImage* img : volumes) sources.push_back(img->image.get());
-    transition(cmd, sources, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-               VK_ACCESS_TRANSFER_READ_BIT);
-    copyImageToBuffer(cmd, res.output, res.outputReadback);
+    if (!sources.empty())
+        transition(cmd, sources, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_TRANSFER_READ_BIT);
+    if (readBackImage) copyImageToBuffer(cmd, res.output, res.outputReadback);
     if (readBackVolumes)
         for (size_t i = 0; i < volumes.size(); ++i) copyImageToBuffer(cmd, *volumes[i], volumeReadback[i]);
     // Counters (light pass) and copies, to the host.

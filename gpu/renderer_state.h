@@ -42,6 +42,7 @@ struct GpuRenderer::State {
     VdbEncoding frameVdbEncoding = VdbEncoding::Float;  // of every vdb volume this frame
     ComputePass debugView;
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
+    bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     LocalShadowCache localShadows;  // the host-built point/spot maps, each kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
