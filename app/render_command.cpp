@@ -48,7 +48,7 @@ struct RenderSession::Gpu {};
 RenderSession::RenderSession(RendererKind kind, const std::string& device) : kind_(kind) {
     if (kind != RendererKind::Gpu) return;
 #if BRUME_HAS_GPU
-    Result<std::unique_ptr<gpu::GpuRenderer>> r = gpu::GpuRenderer::create({device, false});
+    Result<std::unique_ptr<gpu::GpuRenderer>> r = gpu::GpuRenderer::create({device, false, {}});
     if (!r) {
         startFailure_ = RenderFailure{true, r.error().message};
         return;

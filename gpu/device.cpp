@@ -75,15 +75,31 @@ int kindRank(VkPhysicalDeviceType t) {
     }
 }
 
-// A queue family that does graphics and compute (every Vulkan GPU has one); -1 if none.
-int universalQueueFamily(VkPhysicalDevice pd) {
+bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
+    uint32_t n = 0;
+    if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr) != VK_SUCCESS) return false;
+    std::vector<VkExtensionProperties> exts(n);
+    if (vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data()) != VK_SUCCESS) return false;
+    for (const VkExtensionProperties& e : exts)
+        if (std::strcmp(e.extensionName, name) == 0) return true;
+    return false;
+}
+
+// A queue family that does graphics and compute (every Vulkan GPU has one) and, given a surface,
+// presents to it; -1 if none.
+int universalQueueFamily(VkPhysicalDevice pd, VkSurfaceKHR surface) {
+    if (surface && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) return -1;
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-    for (uint32_t i = 0; i < n; ++i)
-        if ((families[i].queueFlags & need) == need) return static_cast<int>(i);
+    for (uint32_t i = 0; i < n; ++i) {
+        if ((families[i].queueFlags & need) != need) continue;
+        VkBool32 present = VK_TRUE;
+        if (surface && vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &present) != VK_SUCCESS) present = VK_FALSE;
+        if (present) return static_cast<int>(i);
+    }
     return -1;
 }
 
@@ -91,7 +107,7 @@ int universalQueueFamily(VkPhysicalDevice pd) {
 
 Result<std::unique_ptr<Device>> Device::create(const GpuOptions& options) {
     std::unique_ptr<Device> d(new Device());
-    BRUME_TRY(d->createInstance(options.validation || envFlag("BRUME_VALIDATION")));
+    BRUME_TRY(d->createInstance(options.validation || envFlag("BRUME_VALIDATION"), options.present));
     std::string wanted = options.device;
     if (wanted.empty() && std::getenv("BRUME_DEVICE")) wanted = std::getenv("BRUME_DEVICE");
     BRUME_TRY(d->pickPhysicalDevice(wanted));
@@ -101,6 +117,7 @@ Result<std::unique_ptr<Device>> Device::create(const GpuOptions& options) {
 
 Device::~Device() {
     if (device_) vkDestroyDevice(device_, nullptr);
+    surface_.reset();
     if (messenger_) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
@@ -109,7 +126,7 @@ Device::~Device() {
     if (instance_) vkDestroyInstance(instance_, nullptr);
 }
 
-Result<void> Device::createInstance(bool validation) {
+Result<void> Device::createInstance(bool validation, const PresentTarget& present) {
     if (validation && !hasLayer(kValidationLayer))
         return Error{"The Vulkan validation layer (VK_LAYER_KHRONOS_validation) was requested but is not installed; "
                      "install vulkan-validationlayers or unset BRUME_VALIDATION."};
@@ -119,6 +136,7 @@ Result<void> Device::createInstance(bool validation) {
     std::vector<const char*> extensions, layers;
     if (debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (validation) layers.push_back(kValidationLayer);
+    for (const std::string& e : present.instanceExtensions) extensions.push_back(e.c_str());
 
     VkApplicationInfo app = vkStruct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
     app.pApplicationName = "brume";
@@ -164,6 +182,11 @@ Result<void> Device::createInstance(bool validation) {
         if (!create) return Error{"Vulkan could not create the validation message callback: the function is missing."};
         BRUME_VK(create(instance_, &messenger, nullptr, &messenger_), "create the validation message callback");
     }
+    if (present.enabled()) {
+        VkSurfaceKHR surface = VK_NULL_HANDLE;
+        BRUME_VK(present.createSurface(instance_, &surface), "create the window surface");
+        surface_ = SurfaceOwner(instance_, surface);
+    }
     return {};
 }
 
@@ -181,7 +204,7 @@ Result<void> Device::pickPhysicalDevice(const std::string& wanted) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(pd, &p);
         names += (names.empty() ? "" : ", ") + std::string(p.deviceName);
-        if (p.apiVersion < VK_API_VERSION_1_1 || universalQueueFamily(pd) < 0) continue;
+        if (p.apiVersion < VK_API_VERSION_1_1 || universalQueueFamily(pd, surface_.get()) < 0) continue;
         if (!wanted.empty() && lower(p.deviceName).find(lower(wanted)) == std::string::npos) continue;
         if (kindRank(p.deviceType) <= bestRank) continue;
         bestRank = kindRank(p.deviceType);
@@ -193,9 +216,12 @@ Result<void> Device::pickPhysicalDevice(const std::string& wanted) {
     if (!physical_ && !wanted.empty())
         return Error{"No Vulkan device matches \"" + wanted + "\" (from the device option or BRUME_DEVICE); available: " +
                      names + "."};
+    if (!physical_ && surface_)
+        return Error{"No Vulkan device supports Vulkan 1.1 with a graphics and compute queue that can also draw to this "
+                     "window; available: " + names + "."};
     if (!physical_)
         return Error{"No Vulkan device supports Vulkan 1.1 with a graphics and compute queue; available: " + names + "."};
-    queueFamily_ = static_cast<uint32_t>(universalQueueFamily(physical_));
+    queueFamily_ = static_cast<uint32_t>(universalQueueFamily(physical_, surface_.get()));
     uint32_t qn = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, nullptr);
     std::vector<VkQueueFamilyProperties> families(qn);
@@ -215,6 +241,11 @@ Result<void> Device::createLogicalDevice() {
     VkDeviceCreateInfo info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    if (surface_) {
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &swapchain;
+    }
     BRUME_VK(vkCreateDevice(physical_, &info, nullptr, &device_), "create a logical device on " + name_);
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
     name(queue_, VK_OBJECT_TYPE_QUEUE, "brume queue");

@@ -5,8 +5,14 @@
 // (case-insensitive substring of the device name), else the best kind present: discrete, then
 // integrated, then virtual, then CPU (lavapipe). Validation: GpuOptions::validation or
 // BRUME_VALIDATION=1; warnings and errors are collected so tests can assert there are none.
+//
+// Headless (the CLI, the tests) and windowed (the editor) use the same builder, as vk-bootstrap's
+// set_headless: a PresentTarget adds the window system's instance extensions and a surface, and
+// then only a device whose queue can also present to that surface is chosen (with
+// VK_KHR_swapchain), so the renderer's images and the window share one device and one queue.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -15,12 +21,21 @@
 #include <vulkan/vulkan.h>
 
 #include "core/result.h"
+#include "vk_owner.h"
 
 namespace brume::gpu {
+
+// A window to present to (empty: headless). createSurface makes the surface on the new instance.
+struct PresentTarget {
+    std::vector<std::string> instanceExtensions;
+    std::function<VkResult(VkInstance, VkSurfaceKHR*)> createSurface;
+    bool enabled() const { return static_cast<bool>(createSurface); }
+};
 
 struct GpuOptions {
     std::string device;       // substring of the device name; empty = BRUME_DEVICE or automatic
     bool validation = false;  // also enabled by BRUME_VALIDATION=1
+    PresentTarget present;    // headless unless set
 };
 
 class Device {
@@ -31,6 +46,10 @@ public:
     Device& operator=(const Device&) = delete;
 
     VkDevice vk() const { return device_; }
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physical() const { return physical_; }
+    // VK_NULL_HANDLE when headless; else the queue presents to it.
+    VkSurfaceKHR surface() const { return surface_.get(); }
     VkQueue queue() const { return queue_; }
     uint32_t queueFamily() const { return queueFamily_; }
     const std::string& name() const { return name_; }
@@ -58,12 +77,13 @@ public:
 
 private:
     Device() = default;
-    Result<void> createInstance(bool validation);
+    Result<void> createInstance(bool validation, const PresentTarget& present);
     Result<void> pickPhysicalDevice(const std::string& wanted);
     Result<void> createLogicalDevice();
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    SurfaceOwner surface_;  // destroyed by ~Device before the instance
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;

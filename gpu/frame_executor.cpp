@@ -236,9 +236,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
 }
 
 void dispatchPass(const PassContext& ctx) {
-    vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.pipeline->pipeline.get());
-    vkCmdBindDescriptorSets(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.bindings->pipelineLayout.get(), 0, 1,
-                            &ctx.bindings->set, 0, nullptr);
+    bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
     const FrameResources& r = *ctx.res;
     switch (ctx.pass->dispatch) {
         case Dispatch::Froxels:
@@ -335,7 +333,7 @@ void GpuRenderer::State::recordReadback(bool readBackVolumes) {
     size_t k = 0;
     for (const ImageDecl& d : kImages) {
         const Buffer* dst = nullptr;
-        if (d.flags & image_flags::OUTPUT) dst = &res.outputReadback;
+        if ((d.flags & image_flags::OUTPUT) && readBackImage) dst = &res.outputReadback;
         if ((d.flags & image_flags::READBACK) && readBackVolumes) dst = &res.volumeReadback[k];
         if (d.flags & image_flags::READBACK) ++k;
         if (!dst) continue;

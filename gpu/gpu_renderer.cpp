@@ -84,6 +84,13 @@ GpuRenderer::~GpuRenderer() {
     if (s_ && s_->device) vkDeviceWaitIdle(s_->device->vk());
 }
 
+const Device& GpuRenderer::device() const { return *s_->device; }
+
+OutputImage GpuRenderer::outputImage() const {
+    return {s_->res[ImageId::outputImage].image.get(), s_->res[ImageId::outputImage].view.get(), s_->res.size,
+            s_->debugParams.view.x != shd::DEBUG_VIEW_FINAL};
+}
+
 std::string GpuRenderer::deviceName() const { return s_->device->name(); }
 bool GpuRenderer::validationEnabled() const { return s_->device->validationEnabled(); }
 std::vector<std::string> GpuRenderer::validationMessages() const { return s_->device->validationMessages(); }
@@ -114,6 +121,15 @@ std::vector<glm::vec4> readVolume(const Buffer& b, glm::ivec3 dims) {
 }  // namespace
 
 Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& request, bool readBackVolumes) {
+    return renderFrames(scene, request, readBackVolumes, true);
+}
+
+Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
+    return renderFrames(scene, request, false, false);
+}
+
+Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequest& request, bool readBackVolumes,
+                                            bool readBackImage) {
     if (request.width < 1 || request.height < 1)
         return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
                      std::to_string(request.height) + "."};
@@ -158,6 +174,7 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     // request.frames frames, each with its jitter and the previous one's history (core/temporal.h
     // decides, as for the CPU renderer); only the last is read back.
     s_->debugParams.view = glm::ivec4(request.debugView, request.debugSlice, 0, 0);
+    s_->readBackImage = readBackImage;
     const uint64_t sceneKey = temporalSceneKey(cs, scene, dims);
     HistoryMode mode = request.history;
     const int frames = std::max(request.frames, 1);
@@ -190,9 +207,11 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     GpuRender out;
     out.wallMs = wallMs;
     out.dims = dims;
-    out.image = Image(size.x, size.y);
-    const auto* pixels = static_cast<const glm::vec4*>(r.outputReadback.mapped);
-    for (size_t i = 0; i < out.image.pixels.size(); ++i) out.image.pixels[i] = glm::vec3(pixels[i]);
+    if (readBackImage) {
+        out.image = Image(size.x, size.y);
+        const auto* pixels = static_cast<const glm::vec4*>(r.outputReadback.mapped);
+        for (size_t i = 0; i < out.image.pixels.size(); ++i) out.image.pixels[i] = glm::vec3(pixels[i]);
+    }
     const auto* counters = static_cast<const shd::FroxelCounters*>(r[BufferId::counters].mapped);
     out.litFroxels = counters->litFroxels;
     out.skippedFroxels = counters->skippedFroxels;

@@ -27,6 +27,16 @@ struct GpuRender {
     size_t overfullClusters = 0;     // light clusters over shd::CLUSTER_MAX_LIGHTS (unculled there)
 };
 
+// The last frame's output image on the device (after renderOnDevice): rgba32f, in
+// VK_IMAGE_LAYOUT_GENERAL, last written by a compute shader of an earlier, finished submission on
+// device().queue(). Valid until the next render.
+struct OutputImage {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    glm::ivec2 size{0};
+    bool displayValues = false;  // a debug view: display colours already (no tone map)
+};
+
 class GpuRenderer {
 public:
     static Result<std::unique_ptr<GpuRenderer>> create(const GpuOptions& options);
@@ -38,6 +48,11 @@ public:
     // RenderRequest::history) and returns the last; wallMs and passes are the last frame's.
     // request.threads is ignored.
     Result<GpuRender> render(const Scene& scene, const RenderRequest& request, bool readBackVolumes = false);
+    // The same, but the image stays on the device (GpuRender::image is empty): for the editor's
+    // window, which draws outputImage() on device() (gpu/display_pass.h).
+    Result<GpuRender> renderOnDevice(const Scene& scene, const RenderRequest& request);
+    OutputImage outputImage() const;
+    const Device& device() const;
 
     std::string deviceName() const;
     bool validationEnabled() const;
@@ -45,6 +60,8 @@ public:
     std::vector<std::string> validationMessages() const;
 
 private:
+    Result<GpuRender> renderFrames(const Scene& scene, const RenderRequest& request, bool readBackVolumes,
+                                   bool readBackImage);
     struct State;
     explicit GpuRenderer(std::unique_ptr<State> state);
     std::unique_ptr<State> s_;

@@ -12,9 +12,7 @@
 namespace brume::gpu {
 
 Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
-    DescriptorBindings b;
     std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
-    std::map<VkDescriptorType, uint32_t> counts;
     for (const BindingDecl& d : bindingTable()) {
         if (d.binding < 0) return Error{"Brume's GPU binding table has a gap; this build of brume is broken."};
         // Only the buffers reach the geometry pass: devices may allow as few as 4 storage images
@@ -23,28 +21,36 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
                                                   : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
                                                         VK_SHADER_STAGE_FRAGMENT_BIT;
         bindings[static_cast<size_t>(d.binding)] = {static_cast<uint32_t>(d.binding), d.type, 1, stages, nullptr};
-        ++counts[d.type];
     }
+    // The push constants are the debug view pass's parameters; the other passes ignore them.
+    return createDescriptorSet(device, bindings, sizeof(shd::DebugViewParams), "froxel");
+}
+
+Result<DescriptorBindings> createDescriptorSet(const Device& device, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                               uint32_t pushBytes, const std::string& name) {
+    DescriptorBindings b;
     VkDescriptorSetLayoutCreateInfo layoutInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     layoutInfo.bindingCount = static_cast<uint32_t>(bindings.size());
     layoutInfo.pBindings = bindings.data();
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    BRUME_VK(vkCreateDescriptorSetLayout(device.vk(), &layoutInfo, nullptr, &setLayout), "create the descriptor set layout");
+    BRUME_VK(vkCreateDescriptorSetLayout(device.vk(), &layoutInfo, nullptr, &setLayout), "create the " + name + " descriptor set layout");
     b.setLayout = DescriptorSetLayoutOwner(device.vk(), setLayout);
-    device.name(setLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "froxel bindings layout");
+    device.name(setLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name + " bindings layout");
 
     VkPipelineLayoutCreateInfo plInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     plInfo.setLayoutCount = 1;
     plInfo.pSetLayouts = &setLayout;
-    // The debug view pass's parameters; the other passes ignore them.
-    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(shd::DebugViewParams)};
-    plInfo.pushConstantRangeCount = 1;
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
+    plInfo.pushConstantRangeCount = pushBytes > 0 ? 1 : 0;
     plInfo.pPushConstantRanges = &push;
     VkPipelineLayout pl = VK_NULL_HANDLE;
-    BRUME_VK(vkCreatePipelineLayout(device.vk(), &plInfo, nullptr, &pl), "create the pipeline layout");
+    BRUME_VK(vkCreatePipelineLayout(device.vk(), &plInfo, nullptr, &pl), "create the " + name + " pipeline layout");
     b.pipelineLayout = PipelineLayoutOwner(device.vk(), pl);
-    device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "froxel pipeline layout");
+    device.name(pl, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name + " pipeline layout");
 
+    // The pool holds exactly the set's descriptors.
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const VkDescriptorSetLayoutBinding& binding : bindings) counts[binding.descriptorType] += binding.descriptorCount;
     std::vector<VkDescriptorPoolSize> sizes;
     for (const auto& [type, n] : counts) sizes.push_back({type, n});
     VkDescriptorPoolCreateInfo poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
@@ -52,16 +58,16 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
     poolInfo.pPoolSizes = sizes.data();
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    BRUME_VK(vkCreateDescriptorPool(device.vk(), &poolInfo, nullptr, &pool), "create the descriptor pool");
+    BRUME_VK(vkCreateDescriptorPool(device.vk(), &poolInfo, nullptr, &pool), "create the " + name + " descriptor pool");
     b.pool = DescriptorPoolOwner(device.vk(), pool);
-    device.name(pool, VK_OBJECT_TYPE_DESCRIPTOR_POOL, "froxel descriptor pool");
+    device.name(pool, VK_OBJECT_TYPE_DESCRIPTOR_POOL, name + " descriptor pool");
 
     VkDescriptorSetAllocateInfo alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
     alloc.descriptorPool = pool;
     alloc.descriptorSetCount = 1;
     alloc.pSetLayouts = &setLayout;
-    BRUME_VK(vkAllocateDescriptorSets(device.vk(), &alloc, &b.set), "allocate the descriptor set");
-    device.name(b.set, VK_OBJECT_TYPE_DESCRIPTOR_SET, "froxel bindings");
+    BRUME_VK(vkAllocateDescriptorSets(device.vk(), &alloc, &b.set), "allocate the " + name + " descriptor set");
+    device.name(b.set, VK_OBJECT_TYPE_DESCRIPTOR_SET, name + " bindings");
     return b;
 }
 
@@ -147,6 +153,12 @@ Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLa
     Result<ComputePass> p = createComputePass(device, layout, shader);
     if (!p) return p.error();
     return &passes_.emplace(shader, std::move(p.value())).first->second;
+}
+
+void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bindings.pipelineLayout.get(), 0, 1, &bindings.set,
+                            0, nullptr);
 }
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,

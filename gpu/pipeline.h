@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <span>
 #include <string>
 
 #include "resources.h"
@@ -19,6 +20,12 @@ struct DescriptorBindings {
 };
 
 Result<DescriptorBindings> createDescriptorBindings(const Device& device);
+
+// One descriptor set of `bindings`: its layout, a pipeline layout with one compute push-constant
+// range of `pushBytes` (0: none), a pool sized for exactly those descriptors, and the set; debug
+// names start with `name`.
+Result<DescriptorBindings> createDescriptorSet(const Device& device, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                                               uint32_t pushBytes, const std::string& name);
 
 // Points every binding of the table at the current resources; call after any of them is recreated.
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r);
@@ -47,6 +54,8 @@ public:
 private:
     std::map<std::string, ComputePass> passes_;
 };
+
+void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings);
 
 // Global memory barrier: writes `srcAccess` by `src` stages before it become visible to `dstAccess`
 // by `dst` stages after it.

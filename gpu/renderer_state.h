@@ -26,6 +26,7 @@ struct GpuRenderer::State {
     PipelineCache pipelines;          // one per shader variant (frame_table.h variantShaderName)
     VariantKey variant;               // this frame's
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
+    bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     LocalShadowCache localShadows;  // the host-built point/spot maps, each kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)

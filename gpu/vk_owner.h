@@ -1,5 +1,6 @@
-// RAII owners for Vulkan objects: one move-only owner per handle, destroyed with its device.
-// Objects owned by a device are declared after the Device in every class, so they die first.
+// RAII owners for Vulkan objects: one move-only owner per handle, destroyed with its parent (the
+// device, or the instance for a surface). Objects owned by a device are declared after the Device
+// in every class, so they die first.
 #pragma once
 
 #include <utility>
@@ -8,15 +9,15 @@
 
 namespace brume::gpu {
 
-template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCallbacks*)>
-class Owner {
+template <class Parent, class Handle, void (*Destroy)(Parent, Handle, const VkAllocationCallbacks*)>
+class ParentOwner {
 public:
-    Owner() = default;
-    Owner(VkDevice device, Handle handle) : device_(device), handle_(handle) {}
-    Owner(const Owner&) = delete;
-    Owner& operator=(const Owner&) = delete;
-    Owner(Owner&& o) noexcept : device_(o.device_), handle_(std::exchange(o.handle_, VK_NULL_HANDLE)) {}
-    Owner& operator=(Owner&& o) noexcept {
+    ParentOwner() = default;
+    ParentOwner(Parent device, Handle handle) : device_(device), handle_(handle) {}
+    ParentOwner(const ParentOwner&) = delete;
+    ParentOwner& operator=(const ParentOwner&) = delete;
+    ParentOwner(ParentOwner&& o) noexcept : device_(o.device_), handle_(std::exchange(o.handle_, VK_NULL_HANDLE)) {}
+    ParentOwner& operator=(ParentOwner&& o) noexcept {
         if (this != &o) {
             reset();
             device_ = o.device_;
@@ -24,7 +25,7 @@ public:
         }
         return *this;
     }
-    ~Owner() { reset(); }
+    ~ParentOwner() { reset(); }
 
     void reset() {
         if (handle_ != VK_NULL_HANDLE) Destroy(device_, handle_, nullptr);
@@ -34,9 +35,12 @@ public:
     explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
 
 private:
-    VkDevice device_ = VK_NULL_HANDLE;
+    Parent device_ = VK_NULL_HANDLE;
     Handle handle_ = VK_NULL_HANDLE;
 };
+
+template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCallbacks*)>
+using Owner = ParentOwner<VkDevice, Handle, Destroy>;
 
 using BufferOwner = Owner<VkBuffer, vkDestroyBuffer>;
 using MemoryOwner = Owner<VkDeviceMemory, vkFreeMemory>;
@@ -52,5 +56,8 @@ using FenceOwner = Owner<VkFence, vkDestroyFence>;
 using QueryPoolOwner = Owner<VkQueryPool, vkDestroyQueryPool>;
 using RenderPassOwner = Owner<VkRenderPass, vkDestroyRenderPass>;
 using FramebufferOwner = Owner<VkFramebuffer, vkDestroyFramebuffer>;
+using SemaphoreOwner = Owner<VkSemaphore, vkDestroySemaphore>;
+using SwapchainOwner = Owner<VkSwapchainKHR, vkDestroySwapchainKHR>;
+using SurfaceOwner = ParentOwner<VkInstance, VkSurfaceKHR, vkDestroySurfaceKHR>;
 
 }  // namespace brume::gpu

@@ -215,6 +215,44 @@ TEST(EditorAccumulation, RendersUntilConvergedThenStopsAndRestartsOnChange) {
     EXPECT_EQ(convergedFrames(scene), 64);  // capped, see accumulation.cpp
 }
 
+// A drag (begin ... end) and each frame that changed the document render coarse: low, at the
+// scale of the window; the first frame at rest is full size at the chosen preset and restarts the
+// history (so it converges to `brume render`); scale 1 never renders coarse.
+TEST(EditorInteraction, CoarseWhileTheDocumentMovesFullWithARestartAtRest) {
+    Interaction in(0.5);
+    ViewPlan p = in.plan(1, false, Quality::High, 1280, 720);
+    EXPECT_FALSE(p.coarse);  // the first frame of a session
+    EXPECT_EQ(p.quality, Quality::High);
+    EXPECT_EQ(p.width, 1280);
+    p = in.plan(1, true, Quality::High, 1280, 720);  // begin: the drag starts, nothing moved yet
+    EXPECT_TRUE(p.coarse);
+    EXPECT_EQ(p.quality, Quality::Low);
+    EXPECT_EQ(p.width, 640);
+    EXPECT_EQ(p.height, 360);
+    EXPECT_FALSE(p.restartHistory);
+    p = in.plan(2, true, Quality::High, 1280, 720);
+    EXPECT_TRUE(p.coarse);
+    EXPECT_FALSE(p.restartHistory);
+    p = in.plan(2, false, Quality::High, 1280, 720);  // end: at rest
+    EXPECT_FALSE(p.coarse);
+    EXPECT_EQ(p.quality, Quality::High);
+    EXPECT_EQ(p.width, 1280);
+    EXPECT_TRUE(p.restartHistory);
+    p = in.plan(2, false, Quality::High, 1280, 720);
+    EXPECT_FALSE(p.restartHistory);  // the accumulation goes on
+    p = in.plan(3, false, Quality::High, 1280, 720);  // one edit (a wheel zoom): one coarse frame
+    EXPECT_TRUE(p.coarse);
+    EXPECT_TRUE(in.plan(3, false, Quality::High, 1280, 720).restartHistory);
+
+    Interaction off(1.0);
+    off.plan(1, false, Quality::Medium, 320, 180);
+    p = off.plan(2, true, Quality::Medium, 320, 180);
+    EXPECT_FALSE(p.coarse);
+    EXPECT_EQ(p.quality, Quality::Medium);
+    EXPECT_EQ(p.width, 320);
+    EXPECT_FALSE(off.plan(2, false, Quality::Medium, 320, 180).restartHistory);
+}
+
 // Hiding is an undoable edit of view state: the viewport renders the scene without the object, a
 // file never holds it, and it does not make the scene dirty.
 TEST(EditorView, HideIsUndoableNotRenderedAndNotSaved) {

@@ -92,6 +92,37 @@ TEST(EditorWindow, ScreenshotOfTheViewportMatchesTheHeadlessRender) {
     fs::remove_all(dir);
 }
 
+// Scale while interacting (app/editor/accumulation.h Interaction): the frames of a drag render
+// coarse (low, half size), and once the drag ends the view restarts at its preset and full size,
+// so its Nth frame at rest is `brume render --frames N` of the moved scene.
+TEST(EditorWindow, CoarseWhileDraggingThenAtRestEqualsTheHeadlessRender) {
+    REQUIRE_XVFB();
+    const fs::path dir = tempDir("interactive");
+    // One action per frame: frames 1-3 are inside the drag (coarse), 4-7 rest (save changes nothing).
+    std::ofstream(dir / "drag.txt") << "begin\n"
+                                       "set volumes[0].transform.translation 1.5 1.2 -1.2\n"
+                                       "set volumes[0].transform.translation 1.0 1.3 -1.0\n"
+                                       "end\n"
+                                       "save \"" << (dir / "moved.json").string() << "\"\n";
+    std::string log;
+    ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + " --width 160 --height 90 --quality medium --validation" +
+                 " --hide-ui --bench --frames 7 --script " + quoted((dir / "drag.txt").string()) + " --screenshot " +
+                 quoted((dir / "editor.png").string()), &log), 0) << log;
+    // --bench counts the kinds of frames after the first: frames 2 and 3 were coarse, 4-7 at rest.
+    EXPECT_NE(log.find("coarse     2 frames"), std::string::npos) << log;
+    EXPECT_NE(log.find("rest       4 frames"), std::string::npos) << log;
+    ASSERT_EQ(sh(std::string(BRUME_EXE) + " render " + quoted((dir / "moved.json").string()) + " -o " +
+                 quoted((dir / "cli.png").string()) + " --width 160 --height 90 --quality medium --frames 4", &log), 0)
+        << log;
+    Result<Image> a = readPngLinear((dir / "editor.png").string());
+    Result<Image> b = readPngLinear((dir / "cli.png").string());
+    ASSERT_TRUE(a.ok() && b.ok());
+    const double err = relativeMeanAbsError(a.value(), b.value());
+    std::printf("editor at rest after a drag vs brume render --frames 4: relative mean abs error %.3g\n", err);
+    EXPECT_LT(err, 0.01);
+    fs::remove_all(dir);
+}
+
 TEST(EditorWindow, ScriptedSessionAddsMovesRetunesSavesAndUndoes) {
     REQUIRE_XVFB();
     const fs::path dir = tempDir("script");

@@ -81,11 +81,14 @@ const ReflectedShader& reflectShader(const std::string& name) {
     return it->second;
 }
 
+// The shaders of the froxel frame: those that declare its set through resources.glsl (the editor's
+// display pass, gpu/display_pass.cpp, has a set of its own).
 std::vector<std::string> shaderFiles() {
     std::vector<std::string> names;
     for (const auto& e : std::filesystem::directory_iterator(kShaders)) {
         const std::string n = e.path().filename().string();
-        if (n.ends_with(".comp") || n.ends_with(".vert") || n.ends_with(".frag")) names.push_back(n);
+        if (!(n.ends_with(".comp") || n.ends_with(".vert") || n.ends_with(".frag"))) continue;
+        if (readShader(n).find("#include \"resources.glsl\"") != std::string::npos) names.push_back(n);
     }
     std::sort(names.begin(), names.end());
     return names;

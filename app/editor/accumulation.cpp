@@ -14,6 +14,21 @@ int convergedFrames(const Scene& scene) {
     return std::clamp(static_cast<int>(n), 1, 64);
 }
 
+ViewPlan Interaction::plan(uint64_t revision, bool grouping, Quality preset, int width, int height) {
+    const bool changed = seen_ && revision != revision_;
+    seen_ = true;
+    revision_ = revision;
+    ViewPlan p;
+    p.coarse = scale_ < 1.0 && (grouping || changed);
+    p.quality = p.coarse ? Quality::Low : preset;
+    const double s = p.coarse ? scale_ : 1.0;
+    p.width = std::max(1, static_cast<int>(std::lround(width * s)));
+    p.height = std::max(1, static_cast<int>(std::lround(height * s)));
+    p.restartHistory = lastCoarse_ && !p.coarse;
+    lastCoarse_ = p.coarse;
+    return p;
+}
+
 bool Accumulation::wantsFrame(const ViewKey& key, const Scene& scene, bool force) const {
     if (force || !(key == key_)) return true;
     return frames_ < convergedFrames(scene);

@@ -31,6 +31,34 @@ struct ViewKey {
 // 5% of its first frame (1 when temporal is off: every frame would be the same).
 int convergedFrames(const Scene& scene);
 
+// Scale while interacting, as DCC viewports do. While the user interacts (a begin ... end group is
+// open: a gizmo or camera drag, a fly, an inspector slider; or the document changed since the
+// previous frame: a wheel zoom, a script's action) the viewport renders a coarse frame: the `low`
+// preset at `scale` of the window's size, which the display pass upscales. At rest it renders the
+// chosen preset at the window's size with the history restarted, so that it converges to
+// `brume render --frames N` of the same scene, preset and size. scale 1 turns this off.
+struct ViewPlan {
+    bool coarse = false;
+    Quality quality = Quality::Low;
+    int width = 0;
+    int height = 0;
+    bool restartHistory = false;  // the first full frame after coarse ones
+};
+
+class Interaction {
+public:
+    explicit Interaction(double scale) : scale_(scale) {}
+    // Called once per frame, before rendering, with the document's state.
+    ViewPlan plan(uint64_t revision, bool grouping, Quality preset, int width, int height);
+    double scale() const { return scale_; }
+
+private:
+    double scale_;
+    bool seen_ = false;
+    uint64_t revision_ = 0;
+    bool lastCoarse_ = false;
+};
+
 class Accumulation {
 public:
     // Whether the next frame should be rendered (`force`: always, as --frames does to time frames).

@@ -64,18 +64,18 @@ void debugSection(Editor& e, double now) {
 
 void froxelGridOverlay(Editor& e) {
     const DebugViewState& d = e.debugView();
-    const Rgba8& vp = e.viewport();
-    if (!d.grid || vp.width <= 0 || vp.height <= 0) return;
+    const glm::ivec2 vp = e.viewSize();
+    if (!d.grid || vp.x <= 0 || vp.y <= 0) return;
     const FroxelSettings fs = resolveFroxelSettings(e.doc().scene(), e.quality());
     const int tile = fs.tile_px;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     // The viewport image fills the window: image pixels to window points.
-    const float sx = display.x / static_cast<float>(vp.width), sy = display.y / static_cast<float>(vp.height);
+    const float sx = display.x / static_cast<float>(vp.x), sy = display.y / static_cast<float>(vp.y);
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     const ImU32 line = IM_COL32(255, 255, 255, 70);
-    for (int x = tile; x < vp.width; x += tile)
+    for (int x = tile; x < vp.x; x += tile)
         draw->AddLine(ImVec2(static_cast<float>(x) * sx, 0.0f), ImVec2(static_cast<float>(x) * sx, display.y), line);
-    for (int y = tile; y < vp.height; y += tile)
+    for (int y = tile; y < vp.y; y += tile)
         draw->AddLine(ImVec2(0.0f, static_cast<float>(y) * sy), ImVec2(display.x, static_cast<float>(y) * sy), line);
     // The slice's depths (slice 0 starts at the camera), as debugSliceDepths.
     const int s = std::clamp(d.slice, 0, fs.slices - 1);

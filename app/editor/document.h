@@ -40,6 +40,8 @@ public:
     bool dirty() const;
     // Increases with every change (edits, undo, redo); renderers and autosave compare it.
     uint64_t revision() const { return revision_; }
+    // Inside begin ... end: a drag (gizmo, camera, slider) or a fly is under way.
+    bool grouping() const { return groupDepth_ > 0; }
     bool canUndo() const { return !undo_.empty(); }
     bool canRedo() const { return !redo_.empty(); }
 

@@ -30,13 +30,10 @@ std::string vec3Words(glm::vec3 v) {
     return f(v.x) + " " + f(v.y) + " " + f(v.z);
 }
 
-// Same bytes as the PNG writer: display transform, then round to 8 bits.
-uint8_t toByte(float v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
-
 }  // namespace
 
-Editor::Editor(Document doc, Autosave autosave, Quality quality)
-    : doc_(std::move(doc)), autosave_(std::move(autosave)), quality_(quality) {}
+Editor::Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale)
+    : doc_(std::move(doc)), autosave_(std::move(autosave)), quality_(quality), interaction_(interactiveScale) {}
 
 Result<void> Editor::run(const std::string& line) {
     Result<Action> a = parseAction(line);
@@ -225,8 +222,7 @@ Result<void> Editor::viewAction(const Action& a) {
     }
     if (n.size() != 2 || n[0] < 0.0f || n[0] > 1.0f || n[1] < 0.0f || n[1] > 1.0f)
         return Error{"pick takes: pick U V (window fractions in [0, 1] from the top-left)."};
-    const float aspect = viewport_.height > 0 ? static_cast<float>(viewport_.width) / static_cast<float>(viewport_.height)
-                                              : viewAspect;
+    const float aspect = viewSize_.y > 0 ? static_cast<float>(viewSize_.x) / static_cast<float>(viewSize_.y) : viewAspect;
     const std::optional<Picked> p = pick(doc_.scene(), aspect, n[0], n[1]);
     if (!p) selection_.kind = Kind::None;
     else selection_ = {p->kind == "light" ? Kind::Light : Kind::Volume, p->index};
@@ -234,36 +230,32 @@ Result<void> Editor::viewAction(const Action& a) {
 }
 
 Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
-    const ViewKey key{doc_.revision(), quality_, width, height, debug_.view, debug_.slice, time_.seconds()};
+    const ViewPlan plan = interaction_.plan(doc_.revision(), doc_.grouping(), quality_, width, height);
+    const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
     if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
     RenderRequest request;
-    request.width = width;
-    request.height = height;
-    request.quality = quality_;
-    request.history = HistoryMode::Continue;
+    request.width = plan.width;
+    request.height = plan.height;
+    request.quality = plan.quality;
+    request.history = plan.restartHistory ? HistoryMode::Restart : HistoryMode::Continue;
     request.debugView = debug_.view;
     request.debugSlice = debug_.slice;
     Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
-    Result<gpu::GpuRender> out = renderer.render(shown, request);
+    Result<gpu::GpuRender> out = renderer.renderOnDevice(shown, request);
     accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
+    hasImage_ = out.ok();
     if (!out) return out.error();
-    viewport_.width = width;
-    viewport_.height = height;
-    viewport_.pixels.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
-    const Image& img = out.value().image;
-    // Debug views are display values already (as `brume render --debug-view` writes them).
-    const bool debug = debug_.view != shd::DEBUG_VIEW_FINAL;
-    for (size_t i = 0; i < img.pixels.size(); ++i) {
-        const glm::vec3 d = debug ? img.pixels[i] : shd::displayFromRadiance(img.pixels[i], 1.0f);
-        viewport_.pixels[i * 4 + 0] = toByte(d.x);
-        viewport_.pixels[i * 4 + 1] = toByte(d.y);
-        viewport_.pixels[i * 4 + 2] = toByte(d.z);
-        viewport_.pixels[i * 4 + 3] = 255;
-    }
-    if (debug) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
+    viewSize_ = glm::ivec2(width, height);
+    coarse_ = plan.coarse;
+    ++renders_;
+    if (debug_.view != shd::DEBUG_VIEW_FINAL) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
     last_ = std::move(out.value());
     return {};
+}
+
+gpu::OutputImage Editor::viewportImage(const gpu::GpuRenderer& renderer) const {
+    return hasImage_ ? renderer.outputImage() : gpu::OutputImage{};
 }
 
 void Editor::notify(const std::string& text, double now) {

@@ -16,7 +16,6 @@
 #include "files.h"
 #include "gizmo_math.h"
 #include "gpu/gpu_renderer.h"
-#include "presenter.h"
 #include "scene_time.h"
 
 namespace brume::editor {
@@ -35,7 +34,8 @@ struct Notification {
 
 class Editor {
 public:
-    Editor(Document doc, Autosave autosave, Quality quality);
+    // interactiveScale: Interaction's scale (accumulation.h), settings::editor_interactive_scale.
+    Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale = 1.0);
 
     // Every action goes through here. Editor verbs (the rest are Document's):
     //   select volume|light|geometry INDEX | select none
@@ -62,12 +62,20 @@ public:
     DebugViewState& debugView() { return debug_; }
     SceneTime& sceneTime() { return time_; }
 
-    // Renders when the document, quality or size changed since the last render, or while the
-    // temporal accumulation of a resting view has not converged (or always with `force`), with the
-    // renderer's history carried on (see accumulation.h).
+    // Call once per frame. Renders when the document, quality or size changed since the last
+    // render, or while the temporal accumulation of a resting view has not converged (or always
+    // with `force`), with the renderer's history carried on (see accumulation.h); coarse while the
+    // user interacts (Interaction). The image stays on the renderer's device (viewportImage).
     Result<void> renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force);
     const Accumulation& accumulation() const { return accumulation_; }
-    const Rgba8& viewport() const { return viewport_; }
+    // The last render's output, or none (nothing rendered yet, or the last render failed).
+    gpu::OutputImage viewportImage(const gpu::GpuRenderer& renderer) const;
+    // The window area the viewport image is shown at (its size, or the window's for a coarse frame).
+    glm::ivec2 viewSize() const { return viewSize_; }
+    // Whether the viewport shows a coarse frame (Interaction, accumulation.h).
+    bool coarse() const { return coarse_; }
+    // Successful renders so far (a frame rendered when this grew).
+    uint64_t renders() const { return renders_; }
     const std::optional<gpu::GpuRender>& lastRender() const { return last_; }
 
     void notify(const std::string& text, double now);
@@ -101,7 +109,11 @@ private:
     Quality quality_;
     DebugViewState debug_;
     SceneTime time_{true};
-    Rgba8 viewport_;
+    glm::ivec2 viewSize_{0};
+    bool hasImage_ = false;
+    bool coarse_ = false;
+    uint64_t renders_ = 0;
+    Interaction interaction_;
     std::optional<gpu::GpuRender> last_;
     Accumulation accumulation_;
     std::deque<Notification> notifications_;

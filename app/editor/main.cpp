@@ -3,6 +3,7 @@
 // --screenshot/--frames renders N frames, saves the window image and exits.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -17,8 +18,10 @@
 
 #include "core/settings.h"
 #include "editor.h"
+#include "frame_stats.h"
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
+#include "presenter.h"
 #include "ui.h"
 
 namespace fs = std::filesystem;
@@ -41,6 +44,9 @@ struct Options {
     bool discardRecovery = false;
     double autosaveSeconds = settings::editor_autosave_seconds.value();
     bool validation = false;
+    std::string device;
+    double interactiveScale = settings::editor_interactive_scale.value();
+    bool bench = false;
 };
 
 double seconds() {
@@ -106,6 +112,14 @@ int main(int argc, char** argv) {
     app.add_option("--autosave-seconds", o.autosaveSeconds, std::string(autosave.help) + " [s]")
         ->check(CLI::Range(autosave.min, autosave.max));
     app.add_flag("--validation", o.validation, "Enable the Vulkan validation layer; exit 1 if it reports anything.");
+    app.add_option("--device", o.device,
+                   "Vulkan device whose name contains this text (case-insensitive); it renders and draws the window. "
+                   "Default: the BRUME_DEVICE environment variable, else a discrete GPU, an integrated GPU, a virtual "
+                   "GPU, then a CPU device (lavapipe).");
+    const Setting& scale = settings::editor_interactive_scale;
+    app.add_option("--interactive-scale", o.interactiveScale, std::string(scale.help))
+        ->check(CLI::Range(scale.min, scale.max));
+    app.add_flag("--bench", o.bench, "At exit, print the median and p95 frame time and the per-pass times (use with --script or --frames).");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -163,6 +177,7 @@ void offerRecovery(Editor& editor, UiState& ui, const Options& o, double now) {
 // One iteration per frame: input, script, UI, autosave, render (when something changed, or every
 // frame with --frames so frame times measure the renderer), present.
 int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuRenderer& renderer, Script& script) {
+    FrameStats stats;
     UiState ui;
     offerRecovery(editor, ui, o, seconds());
     // Scripted and screenshot runs get a frame-count clock that starts paused (scene_time.h).
@@ -200,15 +215,21 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         if (Result<void> r = editor.autosave().tick(editor.doc(), now); !r) editor.notify(r.error().message, now);
         int w = 0, h = 0;
         glfwGetFramebufferSize(presenter.window(), &w, &h);
+        const uint64_t rendersBefore = editor.renders();
         if (w > 0 && h > 0) {
+            if (Result<void> r = presenter.waitForFrame(); !r) return fail(r.error().message, 1);
             if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) editor.notify(r.error().message, now);
         }
         ++frame;
         const bool last = o.frames > 0 && frame >= o.frames;
         const bool capture = (last && !o.screenshot.empty()) || !editor.screenshotRequest.empty();
         Rgba8 shot;
-        if (Result<void> r = presenter.present(editor.viewport(), ImGui::GetDrawData(), capture ? &shot : nullptr); !r)
+        const double presentStart = seconds();
+        if (Result<void> r = presenter.present(editor.viewportImage(renderer), editor.viewSize(), ImGui::GetDrawData(),
+                                               capture ? &shot : nullptr);
+            !r)
             return fail(r.error().message, 1);
+        const double presentMs = (seconds() - presentStart) * 1000.0;
         if (capture) {
             const std::string path = editor.screenshotRequest.empty() ? o.screenshot : editor.screenshotRequest;
             editor.screenshotRequest.clear();
@@ -218,12 +239,19 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         editor.frameMs = (end - frameStart) * 1000.0;
         frameStart = end;
         if (frame > 1) totalMs += editor.frameMs;  // the first frame also compiles the shaders
+        if (o.bench) {
+            const bool rendered = editor.renders() != rendersBefore;
+            const char* kind = !rendered ? "ui" : editor.coarse() ? "coarse" : "rest";
+            stats.add(kind, editor.frameMs, rendered ? editor.lastRender()->passes : std::vector<gpu::PassTiming>{},
+                      presentMs);
+        }
         if (last) {
             if (frame > 1) std::printf("frames: %d, mean frame time (after the first): %.1f ms\n", frame, totalMs / (frame - 1));
             break;
         }
         if (editor.quitRequested || ui.closeConfirmed) break;
     }
+    if (o.bench) std::printf("%s", stats.report().c_str());
     editor.autosave().discard();  // an orderly exit: saved, or the user chose to discard
     return 0;
 }
@@ -240,7 +268,7 @@ int runEditor(const Options& o) {
     Result<Script> script = readScript(o.script);
     if (!script) return fail(script.error().message, 2);
     const std::string recoveryPath = recoveryPathFor(doc.value().path());
-    Editor editor(std::move(doc.value()), Autosave(recoveryPath, o.autosaveSeconds), quality);
+    Editor editor(std::move(doc.value()), Autosave(recoveryPath, o.autosaveSeconds), quality, o.interactiveScale);
     for (std::string& w : editor.files().recent().load()) editor.files().message(std::move(w));
     for (std::string& w : warnings) editor.files().message(std::move(w));
     editor.files().noteRecent(editor.doc().path());
@@ -264,14 +292,20 @@ int runEditor(const Options& o) {
     glfwSetDropCallback(window.handle, onDrop);
     int code = 0;
     {
-        Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, o.validation);
+        // One device renders and draws the window (the renderer outlives the presenter).
+        Result<gpu::PresentTarget> target = windowPresentTarget(window.handle);
+        if (!target) return fail(target.error().message, 1);
+        gpu::GpuOptions options{o.device, o.validation, std::move(target.value())};
+        Result<std::unique_ptr<gpu::GpuRenderer>> renderer = gpu::GpuRenderer::create(options);
+        // A named device that is not there is bad input (as for `brume render --device`).
+        const bool named = !o.device.empty() || std::getenv("BRUME_DEVICE");
+        if (!renderer) return fail(renderer.error().message, named ? 2 : 1);
+        Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, renderer.value()->device());
         if (!presenter) return fail(presenter.error().message, 1);
-        Result<std::unique_ptr<gpu::GpuRenderer>> renderer = gpu::GpuRenderer::create({"", o.validation});
-        if (!renderer) return fail(renderer.error().message, 1);
         code = editorLoop(o, editor, *presenter.value(), *renderer.value(), script.value());
+        presenter.value().reset();
         if (o.validation) {
-            std::vector<std::string> messages = presenter.value()->validationMessages();
-            for (const std::string& m : renderer.value()->validationMessages()) messages.push_back(m);
+            const std::vector<std::string> messages = renderer.value()->validationMessages();
             for (const std::string& m : messages) std::fprintf(stderr, "validation: %s\n", m.c_str());
             if (!messages.empty() && code == 0) code = 1;
         }

@@ -1,8 +1,6 @@
 #include "presenter.h"
 
 #include <algorithm>
-#include <cstring>
-#include <mutex>
 #include <utility>
 
 #define GLFW_INCLUDE_VULKAN
@@ -10,7 +8,10 @@
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
 
+#include "gpu/display_pass.h"
+#include "gpu/resources.h"
 #include "gpu/vk_check.h"
+#include "gpu/vk_owner.h"
 
 namespace brume::editor {
 
@@ -25,149 +26,68 @@ void onImGuiVkResult(VkResult r) {
     if (r != VK_SUCCESS) gImGuiResult = r;
 }
 
-struct HostBuffer {
-    VkBuffer buffer = VK_NULL_HANDLE;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    void* mapped = nullptr;
-    VkDeviceSize size = 0;
-};
-
 }  // namespace
 
-struct Presenter::State {
-    GLFWwindow* window = nullptr;
-    VkInstance instance = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-    VkSurfaceKHR surface = VK_NULL_HANDLE;
-    VkPhysicalDevice physical = VK_NULL_HANDLE;
-    VkDevice device = VK_NULL_HANDLE;
-    uint32_t family = 0;
-    VkQueue queue = VK_NULL_HANDLE;
-    VkSurfaceFormatKHR format{};
-    VkRenderPass renderPass = VK_NULL_HANDLE;
-    VkSwapchainKHR swapchain = VK_NULL_HANDLE;
-    VkExtent2D extent{};
-    uint32_t minImages = 2;
-    std::vector<VkImage> images;
-    std::vector<VkImageView> views;
-    std::vector<VkFramebuffer> framebuffers;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
-    VkSemaphore acquired = VK_NULL_HANDLE;
-    VkSemaphore rendered = VK_NULL_HANDLE;
-    VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
-    HostBuffer upload;
-    HostBuffer readback;
-    bool imguiReady = false;
-    bool swapBytes = false;  // B8G8R8A8 swapchain: swap R and B on the way in and out
-
-    mutable std::mutex messagesMutex;
-    std::vector<std::string> messages;
-
-    ~State();
-    Result<void> createInstance(bool validation);
-    Result<void> createDevice();
-    Result<void> createRenderPass();
-    Result<void> createSwapchain();
-    void destroySwapchainViews();
-    Result<void> createCommands();
-    Result<void> initImGui();
-    Result<void> ensureBuffer(HostBuffer& b, VkDeviceSize size, VkBufferUsageFlags usage);
-    void destroyBuffer(HostBuffer& b);
-    void record(uint32_t image, ImDrawData* ui, bool capture);
-};
-
-namespace {
-
-VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
-                                         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
-    auto* s = static_cast<Presenter::State*>(user);
-    const char* level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
-    std::lock_guard<std::mutex> lock(s->messagesMutex);
-    s->messages.push_back(std::string("editor window: ") + level + ": " + (data->pMessage ? data->pMessage : ""));
-    return VK_FALSE;
-}
-
-}  // namespace
-
-Result<void> Presenter::State::createInstance(bool validation) {
+Result<gpu::PresentTarget> windowPresentTarget(GLFWwindow* window) {
     uint32_t n = 0;
     const char** required = glfwGetRequiredInstanceExtensions(&n);
     if (!required) return Error{"This display has no Vulkan presentation support (GLFW found no Vulkan surface extensions)."};
-    std::vector<const char*> extensions(required, required + n);
-    std::vector<const char*> layers;
-    if (validation) {
-        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-        layers.push_back("VK_LAYER_KHRONOS_validation");
-    }
-    VkApplicationInfo app = vkStruct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
-    app.pApplicationName = "brume-editor";
-    app.apiVersion = VK_API_VERSION_1_1;
-    VkInstanceCreateInfo info = vkStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
-    info.pApplicationInfo = &app;
-    info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
-    info.ppEnabledExtensionNames = extensions.data();
-    info.enabledLayerCount = static_cast<uint32_t>(layers.size());
-    info.ppEnabledLayerNames = layers.data();
-    BRUME_VK(vkCreateInstance(&info, nullptr, &instance), "create the editor window's instance");
-    if (validation) {
-        VkDebugUtilsMessengerCreateInfoEXT m = vkStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
-        m.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        m.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
-        m.pfnUserCallback = onMessage;
-        m.pUserData = this;
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-        if (create) BRUME_VK(create(instance, &m, nullptr, &messenger), "create the validation callback");
-    }
-    BRUME_VK(glfwCreateWindowSurface(instance, window, nullptr, &surface), "create the window surface");
-    return {};
+    gpu::PresentTarget t;
+    t.instanceExtensions.assign(required, required + n);
+    t.createSurface = [window](VkInstance instance, VkSurfaceKHR* surface) {
+        return glfwCreateWindowSurface(instance, window, nullptr, surface);
+    };
+    return t;
 }
 
-Result<void> Presenter::State::createDevice() {
-    uint32_t n = 0;
-    BRUME_VK(vkEnumeratePhysicalDevices(instance, &n, nullptr), "list the devices");
-    std::vector<VkPhysicalDevice> devices(n);
-    BRUME_VK(vkEnumeratePhysicalDevices(instance, &n, devices.data()), "list the devices");
-    for (VkPhysicalDevice pd : devices) {
-        uint32_t qn = 0;
-        vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
-        std::vector<VkQueueFamilyProperties> families(qn);
-        vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, families.data());
-        for (uint32_t f = 0; f < qn && !physical; ++f) {
-            VkBool32 present = VK_FALSE;
-            vkGetPhysicalDeviceSurfaceSupportKHR(pd, f, surface, &present);
-            if (present && (families[f].queueFlags & VK_QUEUE_GRAPHICS_BIT)) physical = pd, family = f;
-        }
-        if (physical) break;
-    }
-    if (!physical) return Error{"No Vulkan device can draw to this window (none supports presentation to it)."};
-    const float priority = 1.0f;
-    VkDeviceQueueCreateInfo q = vkStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
-    q.queueFamilyIndex = family;
-    q.queueCount = 1;
-    q.pQueuePriorities = &priority;
-    const char* swapchainExt = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
-    VkDeviceCreateInfo info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
-    info.queueCreateInfoCount = 1;
-    info.pQueueCreateInfos = &q;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &swapchainExt;
-    BRUME_VK(vkCreateDevice(physical, &info, nullptr, &device), "create the editor window's device");
-    vkGetDeviceQueue(device, family, 0, &queue);
+// Members die in reverse order, all before the device (which outlives the presenter).
+struct Presenter::State {
+    const gpu::Device& device;
+    GLFWwindow* window = nullptr;
+    VkSurfaceFormatKHR format{};
+    bool bgra = false;  // B8G8R8A8 swapchain
+    gpu::RenderPassOwner renderPass;
+    gpu::SwapchainOwner swapchain;
+    VkExtent2D extent{};
+    uint32_t minImages = 2;
+    std::vector<VkImage> images;  // owned by the swapchain
+    std::vector<gpu::ImageViewOwner> views;
+    std::vector<gpu::FramebufferOwner> framebuffers;
+    gpu::CommandPoolOwner pool;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // freed with the pool
+    gpu::FenceOwner fence;
+    gpu::SemaphoreOwner acquired, rendered;
+    gpu::DescriptorPoolOwner descriptorPool;
+    gpu::DisplayPass display;
+    gpu::Buffer windowPixels;  // the display pass's output, copied into the swapchain image
+    gpu::Buffer readback;      // screenshots
+    bool imguiReady = false;
 
+    State(const gpu::Device& d, GLFWwindow* w) : device(d), window(w) {}
+    ~State();
+    Result<void> chooseFormat();
+    Result<void> createRenderPass();
+    Result<void> createSwapchain();
+    Result<void> createCommands();
+    Result<void> initImGui();
+    Result<void> ensureBuffer(gpu::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, gpu::Memory memory,
+                              const char* name);
+    void record(uint32_t image, const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui, bool capture);
+};
+
+Result<void> Presenter::State::chooseFormat() {
     uint32_t fn = 0;
-    vkGetPhysicalDeviceSurfaceFormatsKHR(physical, surface, &fn, nullptr);
+    vkGetPhysicalDeviceSurfaceFormatsKHR(device.physical(), device.surface(), &fn, nullptr);
     std::vector<VkSurfaceFormatKHR> formats(fn);
-    vkGetPhysicalDeviceSurfaceFormatsKHR(physical, surface, &fn, formats.data());
+    vkGetPhysicalDeviceSurfaceFormatsKHR(device.physical(), device.surface(), &fn, formats.data());
     if (formats.empty()) return Error{"The window surface offers no pixel formats."};
-    // UNORM, not SRGB: the viewport bytes are already display-encoded (the PNG's bytes).
+    // UNORM, not SRGB: the display pass writes display-encoded bytes (the PNG's bytes).
     format = formats[0];
     for (const VkSurfaceFormatKHR& f : formats)
         if (f.format == VK_FORMAT_B8G8R8A8_UNORM || f.format == VK_FORMAT_R8G8B8A8_UNORM) format = f;
     if (format.format != VK_FORMAT_B8G8R8A8_UNORM && format.format != VK_FORMAT_R8G8B8A8_UNORM)
         return Error{"The window surface offers no 8-bit UNORM RGBA format, which the editor needs."};
-    swapBytes = format.format == VK_FORMAT_B8G8R8A8_UNORM;
+    bgra = format.format == VK_FORMAT_B8G8R8A8_UNORM;
     return {};
 }
 
@@ -208,20 +128,16 @@ Result<void> Presenter::State::createRenderPass() {
     info.pSubpasses = &sub;
     info.dependencyCount = 2;
     info.pDependencies = deps;
-    BRUME_VK(vkCreateRenderPass(device, &info, nullptr, &renderPass), "create the window's render pass");
+    VkRenderPass rp = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateRenderPass(device.vk(), &info, nullptr, &rp), "create the window's render pass");
+    renderPass = gpu::RenderPassOwner(device.vk(), rp);
     return {};
-}
-
-void Presenter::State::destroySwapchainViews() {
-    for (VkFramebuffer f : framebuffers) vkDestroyFramebuffer(device, f, nullptr);
-    for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
-    framebuffers.clear();
-    views.clear();
 }
 
 Result<void> Presenter::State::createSwapchain() {
     VkSurfaceCapabilitiesKHR caps;
-    BRUME_VK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(physical, surface, &caps), "query the window surface");
+    BRUME_VK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device.physical(), device.surface(), &caps),
+             "query the window surface");
     const VkImageUsageFlags usage =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     if ((caps.supportedUsageFlags & usage) != usage)
@@ -235,7 +151,7 @@ Result<void> Presenter::State::createSwapchain() {
     minImages = std::max(2u, caps.minImageCount);
     if (caps.maxImageCount) minImages = std::min(minImages, caps.maxImageCount);
     VkSwapchainCreateInfoKHR info = vkStruct<VkSwapchainCreateInfoKHR>(VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR);
-    info.surface = surface;
+    info.surface = device.surface();
     info.minImageCount = minImages;
     info.imageFormat = format.format;
     info.imageColorSpace = format.colorSpace;
@@ -247,16 +163,16 @@ Result<void> Presenter::State::createSwapchain() {
     info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
     info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always supported
     info.clipped = VK_TRUE;
-    info.oldSwapchain = swapchain;
+    info.oldSwapchain = swapchain.get();
     VkSwapchainKHR next = VK_NULL_HANDLE;
-    BRUME_VK(vkCreateSwapchainKHR(device, &info, nullptr, &next), "create the window's swapchain");
-    destroySwapchainViews();
-    if (swapchain) vkDestroySwapchainKHR(device, swapchain, nullptr);
-    swapchain = next;
+    BRUME_VK(vkCreateSwapchainKHR(device.vk(), &info, nullptr, &next), "create the window's swapchain");
+    framebuffers.clear();
+    views.clear();
+    swapchain = gpu::SwapchainOwner(device.vk(), next);
     uint32_t n = 0;
-    BRUME_VK(vkGetSwapchainImagesKHR(device, swapchain, &n, nullptr), "list the swapchain images");
+    BRUME_VK(vkGetSwapchainImagesKHR(device.vk(), next, &n, nullptr), "list the swapchain images");
     images.resize(n);
-    BRUME_VK(vkGetSwapchainImagesKHR(device, swapchain, &n, images.data()), "list the swapchain images");
+    BRUME_VK(vkGetSwapchainImagesKHR(device.vk(), next, &n, images.data()), "list the swapchain images");
     for (VkImage image : images) {
         VkImageViewCreateInfo v = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
         v.image = image;
@@ -264,18 +180,18 @@ Result<void> Presenter::State::createSwapchain() {
         v.format = format.format;
         v.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         VkImageView view = VK_NULL_HANDLE;
-        BRUME_VK(vkCreateImageView(device, &v, nullptr, &view), "create a swapchain image view");
-        views.push_back(view);
+        BRUME_VK(vkCreateImageView(device.vk(), &v, nullptr, &view), "create a swapchain image view");
+        views.emplace_back(device.vk(), view);
         VkFramebufferCreateInfo f = vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
-        f.renderPass = renderPass;
+        f.renderPass = renderPass.get();
         f.attachmentCount = 1;
         f.pAttachments = &view;
         f.width = extent.width;
         f.height = extent.height;
         f.layers = 1;
         VkFramebuffer fb = VK_NULL_HANDLE;
-        BRUME_VK(vkCreateFramebuffer(device, &f, nullptr, &fb), "create a framebuffer");
-        framebuffers.push_back(fb);
+        BRUME_VK(vkCreateFramebuffer(device.vk(), &f, nullptr, &fb), "create a framebuffer");
+        framebuffers.emplace_back(device.vk(), fb);
     }
     return {};
 }
@@ -283,19 +199,30 @@ Result<void> Presenter::State::createSwapchain() {
 Result<void> Presenter::State::createCommands() {
     VkCommandPoolCreateInfo p = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
     p.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    p.queueFamilyIndex = family;
-    BRUME_VK(vkCreateCommandPool(device, &p, nullptr, &pool), "create the window's command pool");
+    p.queueFamilyIndex = device.queueFamily();
+    VkCommandPool cp = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateCommandPool(device.vk(), &p, nullptr, &cp), "create the window's command pool");
+    pool = gpu::CommandPoolOwner(device.vk(), cp);
     VkCommandBufferAllocateInfo a = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-    a.commandPool = pool;
+    a.commandPool = cp;
     a.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     a.commandBufferCount = 1;
-    BRUME_VK(vkAllocateCommandBuffers(device, &a, &cmd), "allocate the window's command buffer");
+    BRUME_VK(vkAllocateCommandBuffers(device.vk(), &a, &cmd), "allocate the window's command buffer");
+    device.name(cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, "window frame");
     VkFenceCreateInfo f = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
     f.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-    BRUME_VK(vkCreateFence(device, &f, nullptr, &fence), "create a fence");
+    VkFence fh = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateFence(device.vk(), &f, nullptr, &fh), "create a fence");
+    fence = gpu::FenceOwner(device.vk(), fh);
     VkSemaphoreCreateInfo s = vkStruct<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
-    BRUME_VK(vkCreateSemaphore(device, &s, nullptr, &acquired), "create a semaphore");
-    BRUME_VK(vkCreateSemaphore(device, &s, nullptr, &rendered), "create a semaphore");
+    for (gpu::SemaphoreOwner* owner : {&acquired, &rendered}) {
+        VkSemaphore sem = VK_NULL_HANDLE;
+        BRUME_VK(vkCreateSemaphore(device.vk(), &s, nullptr, &sem), "create a semaphore");
+        *owner = gpu::SemaphoreOwner(device.vk(), sem);
+    }
+    Result<gpu::DisplayPass> d = gpu::DisplayPass::create(device);
+    if (!d) return d.error();
+    display = std::move(d.value());
     return {};
 }
 
@@ -306,19 +233,21 @@ Result<void> Presenter::State::initImGui() {
     d.maxSets = 16;
     d.poolSizeCount = 1;
     d.pPoolSizes = &size;
-    BRUME_VK(vkCreateDescriptorPool(device, &d, nullptr, &descriptorPool), "create the UI's descriptor pool");
+    VkDescriptorPool dp = VK_NULL_HANDLE;
+    BRUME_VK(vkCreateDescriptorPool(device.vk(), &d, nullptr, &dp), "create the UI's descriptor pool");
+    descriptorPool = gpu::DescriptorPoolOwner(device.vk(), dp);
     ImGui_ImplVulkan_InitInfo info{};
-    info.Instance = instance;
-    info.PhysicalDevice = physical;
-    info.Device = device;
-    info.QueueFamily = family;
-    info.Queue = queue;
-    info.DescriptorPool = descriptorPool;
+    info.Instance = device.instance();
+    info.PhysicalDevice = device.physical();
+    info.Device = device.vk();
+    info.QueueFamily = device.queueFamily();
+    info.Queue = device.queue();
+    info.DescriptorPool = dp;
     info.MinImageCount = minImages;
     info.ImageCount = static_cast<uint32_t>(images.size());
     info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     info.CheckVkResultFn = onImGuiVkResult;
-    if (!ImGui_ImplVulkan_Init(&info, renderPass)) return Error{"The UI could not start its Vulkan renderer."};
+    if (!ImGui_ImplVulkan_Init(&info, renderPass.get())) return Error{"The UI could not start its Vulkan renderer."};
     imguiReady = true;
     // The font atlas goes up once, on its own submission.
     VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
@@ -329,73 +258,31 @@ Result<void> Presenter::State::initImGui() {
     VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
-    BRUME_VK(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE), "upload the UI font");
-    BRUME_VK(vkQueueWaitIdle(queue), "upload the UI font");
+    BRUME_VK(vkQueueSubmit(device.queue(), 1, &submit, VK_NULL_HANDLE), "upload the UI font");
+    BRUME_VK(vkQueueWaitIdle(device.queue()), "upload the UI font");
     ImGui_ImplVulkan_DestroyFontUploadObjects();
     return {};
 }
 
-Result<void> Presenter::State::ensureBuffer(HostBuffer& b, VkDeviceSize size, VkBufferUsageFlags usage) {
-    if (b.size >= size) return {};
-    destroyBuffer(b);
-    VkBufferCreateInfo info = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
-    info.size = size;
-    info.usage = usage;
-    BRUME_VK(vkCreateBuffer(device, &info, nullptr, &b.buffer), "create a staging buffer");
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(device, b.buffer, &req);
-    VkPhysicalDeviceMemoryProperties mem;
-    vkGetPhysicalDeviceMemoryProperties(physical, &mem);
-    const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < mem.memoryTypeCount && type == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) type = i;
-    if (type == UINT32_MAX) return Error{"The window's device has no host-visible memory for the viewport."};
-    VkMemoryAllocateInfo a = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    a.allocationSize = req.size;
-    a.memoryTypeIndex = type;
-    BRUME_VK(vkAllocateMemory(device, &a, nullptr, &b.memory), "allocate the viewport's staging memory");
-    BRUME_VK(vkBindBufferMemory(device, b.buffer, b.memory, 0), "bind the viewport's staging memory");
-    BRUME_VK(vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "map the viewport's staging memory");
-    b.size = size;
+Result<void> Presenter::State::ensureBuffer(gpu::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage,
+                                            gpu::Memory memory, const char* name) {
+    if (b.buffer && b.size >= size) return {};
+    b = gpu::Buffer{};
+    Result<gpu::Buffer> nb = gpu::createBuffer(device, size, usage, memory, name);
+    if (!nb) return nb.error();
+    b = std::move(nb.value());
     return {};
 }
 
-void Presenter::State::destroyBuffer(HostBuffer& b) {
-    if (b.buffer) vkDestroyBuffer(device, b.buffer, nullptr);
-    if (b.memory) vkFreeMemory(device, b.memory, nullptr);
-    b = HostBuffer{};
-}
-
 Presenter::State::~State() {
-    if (device) vkDeviceWaitIdle(device);
+    vkDeviceWaitIdle(device.vk());
     if (imguiReady) ImGui_ImplVulkan_Shutdown();
-    if (device) {
-        destroyBuffer(upload);
-        destroyBuffer(readback);
-        destroySwapchainViews();
-        if (swapchain) vkDestroySwapchainKHR(device, swapchain, nullptr);
-        if (descriptorPool) vkDestroyDescriptorPool(device, descriptorPool, nullptr);
-        if (acquired) vkDestroySemaphore(device, acquired, nullptr);
-        if (rendered) vkDestroySemaphore(device, rendered, nullptr);
-        if (fence) vkDestroyFence(device, fence, nullptr);
-        if (pool) vkDestroyCommandPool(device, pool, nullptr);
-        if (renderPass) vkDestroyRenderPass(device, renderPass, nullptr);
-        vkDestroyDevice(device, nullptr);
-    }
-    if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
-    if (messenger) {
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-        if (destroy) destroy(instance, messenger, nullptr);
-    }
-    if (instance) vkDestroyInstance(instance, nullptr);
 }
 
-Result<std::unique_ptr<Presenter>> Presenter::create(GLFWwindow* window, bool validation) {
-    auto s = std::make_unique<State>();
-    s->window = window;
-    BRUME_TRY(s->createInstance(validation));
-    BRUME_TRY(s->createDevice());
+Result<std::unique_ptr<Presenter>> Presenter::create(GLFWwindow* window, const gpu::Device& device) {
+    if (!device.surface()) return Error{"The editor's Vulkan device was created without the window's surface."};
+    auto s = std::make_unique<State>(device, window);
+    BRUME_TRY(s->chooseFormat());
     BRUME_TRY(s->createRenderPass());
     BRUME_TRY(s->createSwapchain());
     BRUME_TRY(s->createCommands());
@@ -410,9 +297,10 @@ GLFWwindow* Presenter::window() const { return s_->window; }
 
 void Presenter::newFrame() { ImGui_ImplVulkan_NewFrame(); }
 
-std::vector<std::string> Presenter::validationMessages() const {
-    std::lock_guard<std::mutex> lock(s_->messagesMutex);
-    return s_->messages;
+Result<void> Presenter::waitForFrame() {
+    const VkFence fence = s_->fence.get();
+    BRUME_VK(vkWaitForFences(s_->device.vk(), 1, &fence, VK_TRUE, UINT64_MAX), "wait for the previous window frame");
+    return {};
 }
 
 namespace {
@@ -432,24 +320,42 @@ VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayo
 
 }  // namespace
 
-// Records: viewport bytes -> window image (transfer), ImGui over it (render pass), and for a
-// capture, window image -> readback buffer.
-void Presenter::State::record(uint32_t index, ImDrawData* ui, bool capture) {
+// Records: the renderer's output -> window pixels (display pass, or the background colour before
+// any render) -> window image (transfer), ImGui over it (render pass), and for a capture, window
+// image -> readback buffer.
+void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui,
+                              bool capture) {
     const VkImage image = images[index];
     VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkBeginCommandBuffer(cmd, &begin);
+    // The previous frame's copy read the pixel buffer; this frame rewrites it.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0);
+    if (source.view) {
+        shd::DisplayParams p{};
+        p.sourceSize = source.size;
+        p.viewSize = viewSize;
+        p.windowSize = glm::ivec2(static_cast<int>(extent.width), static_cast<int>(extent.height));
+        p.toneMap = source.displayValues ? 0 : 1;
+        p.bgra = bgra ? 1 : 0;
+        display.record(device, cmd, source, windowPixels.buffer.get(), p);
+    } else {
+        const uint32_t grey = shd::DISPLAY_BACKGROUND * 0x010101u | (255u << 24u);
+        vkCmdFillBuffer(cmd, windowPixels.buffer.get(), 0, VK_WHOLE_SIZE, grey);
+        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    }
     VkImageMemoryBarrier toCopy = imageBarrier(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                                                VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toCopy);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, upload.buffer, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    vkCmdCopyBufferToImage(cmd, windowPixels.buffer.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
 
     VkRenderPassBeginInfo rp = vkStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
-    rp.renderPass = renderPass;
-    rp.framebuffer = framebuffers[index];
+    rp.renderPass = renderPass.get();
+    rp.framebuffer = framebuffers[index].get();
     rp.renderArea.extent = extent;
     vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     if (ui) ImGui_ImplVulkan_RenderDrawData(ui, cmd);
@@ -459,7 +365,7 @@ void Presenter::State::record(uint32_t index, ImDrawData* ui, bool capture) {
         VkImageMemoryBarrier toRead = imageBarrier(image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                                    0, VK_ACCESS_TRANSFER_READ_BIT);
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toRead);
-        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer.get(), 1, &region);
         VkImageMemoryBarrier back = imageBarrier(image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                                                  VK_ACCESS_TRANSFER_READ_BIT, 0);
         VkBufferMemoryBarrier host = vkStruct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
@@ -467,7 +373,7 @@ void Presenter::State::record(uint32_t index, ImDrawData* ui, bool capture) {
         host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
         host.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        host.buffer = readback.buffer;
+        host.buffer = readback.buffer.get();
         host.size = VK_WHOLE_SIZE;
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT,
                              0, 0, nullptr, 1, &host, 1, &back);
@@ -475,80 +381,64 @@ void Presenter::State::record(uint32_t index, ImDrawData* ui, bool capture) {
     vkEndCommandBuffer(cmd);
 }
 
-// Fills the staging buffer with the window-sized image: the viewport at the top-left, dark grey
-// where the viewport does not reach (e.g. the frame after a resize, before the next render).
-static void fillUpload(void* dst, VkExtent2D extent, const Rgba8& viewport, bool swapBytes) {
-    auto* out = static_cast<uint8_t*>(dst);
-    for (uint32_t y = 0; y < extent.height; ++y) {
-        for (uint32_t x = 0; x < extent.width; ++x) {
-            uint8_t* d = out + (static_cast<size_t>(y) * extent.width + x) * 4;
-            if (static_cast<int>(x) < viewport.width && static_cast<int>(y) < viewport.height) {
-                const uint8_t* s = viewport.pixels.data() + (static_cast<size_t>(y) * static_cast<size_t>(viewport.width) + x) * 4;
-                d[0] = swapBytes ? s[2] : s[0];
-                d[1] = s[1];
-                d[2] = swapBytes ? s[0] : s[2];
-                d[3] = 255;
-            } else {
-                d[0] = d[1] = d[2] = 24;
-                d[3] = 255;
-            }
-        }
-    }
-}
-
-Result<void> Presenter::present(const Rgba8& viewport, ImDrawData* ui, Rgba8* capture) {
+Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui, Rgba8* capture) {
     State& s = *s_;
-    BRUME_VK(vkWaitForFences(s.device, 1, &s.fence, VK_TRUE, UINT64_MAX), "wait for the previous window frame");
+    const VkDevice device = s.device.vk();
+    const VkFence fence = s.fence.get();
+    BRUME_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "wait for the previous window frame");
     int w = 0, h = 0;
     glfwGetFramebufferSize(s.window, &w, &h);
     if (w == 0 || h == 0) return {};  // minimized
     if (static_cast<uint32_t>(w) != s.extent.width || static_cast<uint32_t>(h) != s.extent.height) {
-        BRUME_VK(vkDeviceWaitIdle(s.device), "wait for the window before resizing");
+        BRUME_VK(vkDeviceWaitIdle(device), "wait for the window before resizing");
         BRUME_TRY(s.createSwapchain());
     }
     uint32_t index = 0;
-    VkResult r = vkAcquireNextImageKHR(s.device, s.swapchain, UINT64_MAX, s.acquired, VK_NULL_HANDLE, &index);
+    const VkSemaphore acquired = s.acquired.get(), rendered = s.rendered.get();
+    VkResult r = vkAcquireNextImageKHR(device, s.swapchain.get(), UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
     if (r == VK_ERROR_OUT_OF_DATE_KHR) {
-        BRUME_VK(vkDeviceWaitIdle(s.device), "wait for the window before resizing");
+        BRUME_VK(vkDeviceWaitIdle(device), "wait for the window before resizing");
         return s.createSwapchain();  // the next frame draws
     }
     if (r != VK_SUBOPTIMAL_KHR) BRUME_VK(r, "get the next window image");
-    BRUME_VK(vkResetFences(s.device, 1, &s.fence), "reset the window fence");
+    BRUME_VK(vkResetFences(device, 1, &fence), "reset the window fence");
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(s.extent.width) * s.extent.height * 4;
-    BRUME_TRY(s.ensureBuffer(s.upload, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT));
-    if (capture) BRUME_TRY(s.ensureBuffer(s.readback, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT));
-    fillUpload(s.upload.mapped, s.extent, viewport, s.swapBytes);
-    s.record(index, ui, capture != nullptr);
+    BRUME_TRY(s.ensureBuffer(s.windowPixels, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                             VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::Memory::DeviceLocal, "window pixels"));
+    if (capture)
+        BRUME_TRY(s.ensureBuffer(s.readback, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::Memory::Readback, "screenshot"));
+    s.record(index, source, viewSize, ui, capture != nullptr);
 
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
     VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
     submit.waitSemaphoreCount = 1;
-    submit.pWaitSemaphores = &s.acquired;
+    submit.pWaitSemaphores = &acquired;
     submit.pWaitDstStageMask = &waitStage;
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &s.cmd;
     submit.signalSemaphoreCount = 1;
-    submit.pSignalSemaphores = &s.rendered;
-    BRUME_VK(vkQueueSubmit(s.queue, 1, &submit, s.fence), "submit the window frame");
+    submit.pSignalSemaphores = &rendered;
+    BRUME_VK(vkQueueSubmit(s.device.queue(), 1, &submit, fence), "submit the window frame");
     VkPresentInfoKHR present = vkStruct<VkPresentInfoKHR>(VK_STRUCTURE_TYPE_PRESENT_INFO_KHR);
     present.waitSemaphoreCount = 1;
-    present.pWaitSemaphores = &s.rendered;
+    present.pWaitSemaphores = &rendered;
     present.swapchainCount = 1;
-    present.pSwapchains = &s.swapchain;
+    const VkSwapchainKHR swapchain = s.swapchain.get();
+    present.pSwapchains = &swapchain;
     present.pImageIndices = &index;
-    r = vkQueuePresentKHR(s.queue, &present);
+    r = vkQueuePresentKHR(s.device.queue(), &present);
     if (r != VK_SUBOPTIMAL_KHR && r != VK_ERROR_OUT_OF_DATE_KHR) BRUME_VK(r, "show the window frame");
     if (gImGuiResult != VK_SUCCESS) return gpu::vkError("draw the UI", std::exchange(gImGuiResult, VK_SUCCESS));
     if (capture) {
-        BRUME_VK(vkWaitForFences(s.device, 1, &s.fence, VK_TRUE, UINT64_MAX), "wait for the screenshot");
+        BRUME_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "wait for the screenshot");
         capture->width = static_cast<int>(s.extent.width);
         capture->height = static_cast<int>(s.extent.height);
         capture->pixels.resize(static_cast<size_t>(bytes));
         const auto* src = static_cast<const uint8_t*>(s.readback.mapped);
         for (size_t i = 0; i < capture->pixels.size(); i += 4) {
-            capture->pixels[i + 0] = s.swapBytes ? src[i + 2] : src[i];
+            capture->pixels[i + 0] = s.bgra ? src[i + 2] : src[i];
             capture->pixels[i + 1] = src[i + 1];
-            capture->pixels[i + 2] = s.swapBytes ? src[i] : src[i + 2];
+            capture->pixels[i + 2] = s.bgra ? src[i] : src[i + 2];
             capture->pixels[i + 3] = 255;
         }
     }

@@ -1,10 +1,12 @@
-// The editor window's Vulkan side: its own instance, device and swapchain (a second device next to
-// the renderer's: GpuRenderer renders into an Image read back to the CPU, and each frame the
-// presenter copies those pixels into the swapchain image, then draws Dear ImGui over them).
-// On lavapipe both devices are the CPU, so the copy is cheap next to the froxel passes; sharing
-// one VkDevice and sampling the renderer's output directly is the next step for real GPUs.
+// The editor window's Vulkan side, on the renderer's device (gpu::Device created with a
+// PresentTarget for the window: one instance, one device choice, one queue that renders and
+// presents). Each frame: the display pass (gpu/display_pass.h) turns the renderer's output image
+// into the window's 8-bit pixels on the device, a copy puts them in the swapchain image, and Dear
+// ImGui draws over them in a render pass that loads them. The rendered image never visits the CPU
+// (a screenshot reads the window image back).
 //
-// One frame in flight (one fence): simple, and the renderer already waits for its own frame.
+// One frame in flight (one fence): the renderer waits for its own frame anyway, so a second
+// would overlap only the UI's few milliseconds with the next frame's CPU work.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +14,10 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "core/result.h"
+#include "gpu/gpu_renderer.h"
 
 struct GLFWwindow;
 struct ImDrawData;
@@ -26,19 +31,26 @@ struct Rgba8 {
     std::vector<uint8_t> pixels;
 };
 
+// What gpu::Device needs to present to `window`: GLFW's instance extensions and its surface.
+Result<gpu::PresentTarget> windowPresentTarget(GLFWwindow* window);
+
 class Presenter {
 public:
-    static Result<std::unique_ptr<Presenter>> create(GLFWwindow* window, bool validation);
+    // `device` must have been created with windowPresentTarget(window), and outlive the presenter.
+    static Result<std::unique_ptr<Presenter>> create(GLFWwindow* window, const gpu::Device& device);
     ~Presenter();
     Presenter(const Presenter&) = delete;
     Presenter& operator=(const Presenter&) = delete;
 
-    // Copies `viewport` to the top-left of the window image (the rest is cleared), draws `ui`
-    // over it and presents. With `capture`, also returns the window image as presented.
-    Result<void> present(const Rgba8& viewport, ImDrawData* ui, Rgba8* capture = nullptr);
+    // Draws `source` (the renderer's output; no image: nothing rendered yet) scaled to `viewSize`
+    // at the window's top-left (the rest is cleared), `ui` over it, and presents. With `capture`,
+    // also returns the window image as presented.
+    Result<void> present(const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui, Rgba8* capture = nullptr);
+    // Waits until the last present()'s commands have finished: call before the renderer records
+    // again, since they read its output image (which a new size also destroys).
+    Result<void> waitForFrame();
     // Call from the UI before ImGui::NewFrame.
     void newFrame();
-    std::vector<std::string> validationMessages() const;
     GLFWwindow* window() const;
 
     struct State;

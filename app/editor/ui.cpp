@@ -244,7 +244,7 @@ void stats(Editor& e, UiState& ui, double now) {
     int q = static_cast<int>(e.quality());
     if (ImGui::Combo("quality", &q, names, 4)) runOrNotify(e, std::string("quality ") + names[q], now);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Froxel preset of the viewport (docs/quality.md); not saved in the scene.");
-    ImGui::Text("frame %.1f ms", e.frameMs);
+    ImGui::Text("frame %.1f ms%s", e.frameMs, e.coarse() ? "  (coarse: interacting)" : "");
     sceneTimeRow(e, now);
     const int converged = convergedFrames(e.doc().scene());
     ImGui::Text("temporal %d / %d frames%s", std::min(e.accumulation().frames(), converged), converged,

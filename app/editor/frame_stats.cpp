@@ -1,0 +1,58 @@
+#include "frame_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace brume::editor {
+namespace {
+
+// Nearest-rank percentile (p in [0, 1]) of a copy of `v`; 0 when empty.
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t rank = static_cast<size_t>(std::ceil(p * static_cast<double>(v.size())));
+    return v[std::clamp<size_t>(rank, 1, v.size()) - 1];
+}
+
+std::string line(const char* label, const std::vector<double>& ms) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%-7s %4zu frames: median %8.1f ms, p95 %8.1f ms", label, ms.size(),
+                  percentile(ms, 0.5), percentile(ms, 0.95));
+    return buf;
+}
+
+}  // namespace
+
+void FrameStats::add(const std::string& kind, double frameMs, const std::vector<gpu::PassTiming>& passes,
+                     double presentMs) {
+    if (++frames_ == 1) return;  // the first frame also compiles the shaders
+    for (Samples* s : {&all_, &byKind_[kind]}) {
+        s->frameMs.push_back(frameMs);
+        auto put = [s](const std::string& name, double ms) {
+            if (ms < 0.0) return;
+            if (!s->passMs.count(name)) s->passOrder.push_back(name);
+            s->passMs[name].push_back(ms);
+        };
+        for (const gpu::PassTiming& p : passes) put(p.name, p.gpuMs);
+        put("present", presentMs);
+    }
+}
+
+std::string FrameStats::report() const {
+    std::string out = "bench: frame wall time (frames after the first)\n  " + line("all", all_.frameMs) + "\n";
+    for (const auto& [kind, s] : byKind_) {
+        out += "  " + line(kind.c_str(), s.frameMs) + "\n";
+        if (s.passOrder.empty()) continue;
+        out += "    median ms:";
+        for (const std::string& name : s.passOrder) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf, " %s %.1f,", name.c_str(), percentile(s.passMs.at(name), 0.5));
+            out += buf;
+        }
+        out.back() = '\n';
+    }
+    return out;
+}
+
+}  // namespace brume::editor
