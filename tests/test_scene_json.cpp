@@ -14,6 +14,8 @@
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
 
+#include <nlohmann/json.hpp>
+
 namespace brume {
 namespace {
 
@@ -465,6 +467,114 @@ TEST(SceneJson, DocsTableListsEverySetting) {
         for (size_t p = key.find('|'); p != std::string::npos; p = key.find('|', p + 2)) key.replace(p, 1, "\\|");
         EXPECT_NE(table.find("| `" + key + "` |"), std::string::npos) << s->path;
     }
+}
+
+}  // namespace
+}  // namespace brume
+
+// Keys are read once (io/scene_json.cpp, Obj): a key no reader looks up is an error at every level,
+// with the keys that level knows and, for a near miss, the key meant.
+namespace brume {
+namespace {
+
+TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
+    const ErrorCase cases[] = {
+        {R"({"brume_scene": 1, "camera": {"fov": 40}})",
+         "scene.json: camera.fov: unknown key; allowed in camera: position, target, up, fov_y_deg, near, far"},
+        {R"({"brume_scene": 1, "render": {"widht": 40}})",
+         "scene.json: render.widht: unknown key (did you mean \"width\"?); allowed in render: width, height, quality"},
+        {R"({"brume_scene": 1, "froxels": {"tiles": 4}})",
+         "scene.json: froxels.tiles: unknown key; allowed in froxels: tile_px, slices, near, far, distribution"},
+        {R"({"brume_scene": 1, "temporal": {"weight": 0.5}})",
+         "scene.json: temporal.weight: unknown key; allowed in temporal: enabled, history_weight"},
+        {R"({"brume_scene": 1, "lights": [{"type": "spot", "fogscale": 2}]})",
+         "scene.json: lights[0].fogscale: unknown key (did you mean \"fog_scale\"?); allowed in a spot light: type, name, "
+         "position, direction, inner_deg, outer_deg, color, intensity, range, shadows, fog_scale"},
+        {R"({"brume_scene": 1, "lights": [{"type": "directional", "position": [0, 1, 0]}]})",
+         "scene.json: lights[0].position: unknown key; allowed in a directional light: type, name, direction, color, "
+         "intensity, shadows, fog_scale"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "height", "fallof": 1}]})",
+         "scene.json: volumes[0].fallof: unknown key (did you mean \"falloff\"?); allowed in a height volume: type, name, "
+         "base_height, profile, falloff, transition_height, density_texture, medium"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "depth", "medium": {}, "start": 1}]})",
+         "scene.json: volumes[0].start: unknown key; allowed in a depth volume: type, name, visibility_distance, "
+         "start_distance, density_texture, medium"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "box", "transform": {"rotation": [0, 1, 0]}}]})",
+         "scene.json: volumes[0].transform.rotation: unknown key; allowed in a transform: translation, rotation_deg, scale"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": "a.vdb", "scale": 2}]})",
+         "scene.json: volumes[0].scale: unknown key; allowed in a vdb volume: type, name, file, grid, encoding, transform, "
+         "density_scale, density_texture, medium"},
+        {R"({"brume_scene": 1, "geometry": [{"type": "sphere", "centre": [0, 1, 0]}]})",
+         "scene.json: geometry[0].centre: unknown key (did you mean \"center\"?); allowed in a sphere: type, name, center, "
+         "radius, albedo, emission"},
+        {R"({"brume_scene": 1, "geometry": [{"type": "box", "transform": {"scales": [1, 1, 1]}}]})",
+         "scene.json: geometry[0].transform.scales: unknown key (did you mean \"scale\"?); allowed in a transform: "
+         "translation, rotation_deg, scale"},
+        {R"({"brume_scene": 1, "ambiant": [0, 0, 0]})",
+         "scene.json: ambiant: unknown key (did you mean \"ambient\"?); allowed in a scene: brume_scene, camera, render, "
+         "froxels, temporal, ambient, lights, volumes, geometry"},
+    };
+    for (const ErrorCase& c : cases) EXPECT_EQ(parseError(c.text), c.message) << "input: " << c.text;
+}
+
+// A misspelt key is named before the problems it causes: "fiel" leaves "file" missing, and the
+// message is about "fiel".
+TEST(SceneJsonKeys, MisspeltKeyInsideDensityTexture) {
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"fiel": "noise.vdb"}}]})"),
+              "scene.json: volumes[0].density_texture.fiel: unknown key (did you mean \"file\"?); allowed in "
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength");
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"file": "n.vdb", "strenght": 2}}]})"),
+              "scene.json: volumes[0].density_texture.strenght: unknown key (did you mean \"strength\"?); allowed in "
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength");
+    // Without the typo the missing file is what is wrong.
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"grid": "density"}}]})"),
+              "scene.json: volumes[0].density_texture.file: missing required key (the OpenVDB file of the texture)");
+}
+
+// Every key written in a shipped scene is read: the strict reader accepts the file, and each of the
+// file's values comes back, at the same JSON path, in what the writer makes of the scene it read.
+void expectEveryLeafIn(const nlohmann::json& file, const nlohmann::json& written, const std::string& path,
+                       const std::string& scene) {
+    if (file.is_object()) {
+        for (const auto& item : file.items()) {
+            const std::string p = path.empty() ? item.key() : path + "." + item.key();
+            ASSERT_TRUE(written.is_object() && written.contains(item.key())) << scene << ": " << p << " was not read";
+            expectEveryLeafIn(item.value(), written[item.key()], p, scene);
+        }
+    } else if (path.ends_with("direction")) {
+        EXPECT_TRUE(written.is_array()) << scene << ": " << path;  // directions are normalized on load
+    } else if (file.is_array() && !file.empty() && (file[0].is_object() || file[0].is_array())) {
+        ASSERT_TRUE(written.is_array() && written.size() == file.size()) << scene << ": " << path;
+        for (size_t i = 0; i < file.size(); ++i)
+            expectEveryLeafIn(file[i], written[i], path + "[" + std::to_string(i) + "]", scene);
+    } else if (file.is_number()) {
+        EXPECT_TRUE(written.is_number()) << scene << ": " << path;
+        if (written.is_number()) {
+            EXPECT_FLOAT_EQ(static_cast<float>(file.get<double>()), static_cast<float>(written.get<double>()))
+                << scene << ": " << path;
+        }
+    } else if (file.is_array()) {
+        ASSERT_TRUE(written.is_array() && written.size() == file.size()) << scene << ": " << path;
+        for (size_t i = 0; i < file.size(); ++i)
+            expectEveryLeafIn(file[i], written[i], path + "[" + std::to_string(i) + "]", scene);
+    } else {
+        EXPECT_EQ(file, written) << scene << ": " << path;
+    }
+}
+
+TEST(SceneJsonKeys, EveryKeyOfEveryShippedSceneIsRead) {
+    int scenes = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(fs::path(BRUME_SOURCE_DIR) / "assets" / "scenes")) {
+        if (e.path().extension() != ".json") continue;
+        ++scenes;
+        const std::string text = readAll(e.path());
+        Result<Scene> r = parseScene(text, e.path().string());
+        ASSERT_TRUE(r) << r.error().message;
+        const nlohmann::json file = nlohmann::json::parse(text);
+        const nlohmann::json written = nlohmann::json::parse(sceneToJson(r.value()));
+        expectEveryLeafIn(file, written, "", e.path().filename().string());
+    }
+    EXPECT_GE(scenes, 6);
 }
 
 }  // namespace
