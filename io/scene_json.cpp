@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/animate.h"
 #include "io/atomic_file.h"
 
 namespace brume {
@@ -119,6 +120,20 @@ size_t editDistance(std::string_view a, std::string_view b) {
     return d[a.size()][b.size()];
 }
 
+// The key of `candidates` nearest to `key`, if near enough to be the one meant.
+std::optional<std::string> closestKey(const std::string& key, const std::vector<std::string>& candidates) {
+    std::optional<std::string> best;
+    size_t bestDistance = std::max<size_t>(1, std::min<size_t>(3, key.size() / 3)) + 1;
+    for (const std::string& k : candidates) {
+        const size_t d = editDistance(key, k);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = k;
+        }
+    }
+    return best;
+}
+
 // One JSON object being read, after pbrt-v4's ParameterDictionary: every lookup names a key the
 // reader knows and marks it used when present; finish() reports the first key nobody looked up,
 // listing the keys that were. So each key is spelled once, where it is read, and the allowed keys
@@ -134,6 +149,7 @@ public:
         if (!v.is_object()) c.fail(this->path, "expected an object, got " + describe(v));
     }
     bool isObject() const { return v_.is_object(); }
+    const json& raw() const { return v_; }
     void setWhere(std::string where) { where_ = std::move(where); }
 
     const json* get(std::string_view key) {
@@ -150,7 +166,7 @@ public:
         for (const auto& item : v_.items()) {
             if (std::find(asked_.begin(), asked_.end(), item.key()) != asked_.end()) continue;
             std::string what = "unknown key";
-            if (const std::optional<std::string> near = closest(item.key())) what += " (did you mean \"" + *near + "\"?)";
+            if (const std::optional<std::string> near = closestKey(item.key(), asked_)) what += " (did you mean \"" + *near + "\"?)";
             c_.error.reset();
             c_.fail(at(item.key()), what + "; allowed in " + where_ + ": " + joinList(asked_));
             return;
@@ -158,19 +174,6 @@ public:
     }
 
 private:
-    std::optional<std::string> closest(const std::string& key) const {
-        std::optional<std::string> best;
-        size_t bestDistance = std::max<size_t>(1, std::min<size_t>(3, key.size() / 3)) + 1;
-        for (const std::string& k : asked_) {
-            const size_t d = editDistance(key, k);
-            if (d < bestDistance) {
-                bestDistance = d;
-                best = k;
-            }
-        }
-        return best;
-    }
-
     Ctx& c_;
     const json& v_;
 
@@ -429,6 +432,68 @@ void normalizeDirection(Ctx& c, const std::string& path, glm::vec3& dir) {
     if (std::abs(len - 1.0) > 1.0e-6) dir = glm::vec3(toD(dir) / len);
 }
 
+// "keys": {"TARGET": LIST, ...}, LIST = [KEY, ...] (linear) or {"interpolation": "linear" | "smooth",
+// "keys": [KEY, ...]}, KEY = {"time": s, "value": v}. `targetOf` names the setting a target drives
+// (null: not keyable on this object's type); `keyable` lists those that are, for the message.
+void readKeyframe(Ctx& c, const json& v, const std::string& path, const Setting& target, KeyTrack& track) {
+    Obj o(c, v, path, "a key");
+    if (!o.isObject()) return;
+    Keyframe k;
+    const json* time = o.get(keyOf(st::keys_time));
+    const json* value = o.get(keyOf(st::keys_value));
+    if (!time) c.fail(o.at(keyOf(st::keys_time)), "missing required key (the key's scene time in s)");
+    else if (const std::optional<double> t = asNumber(c, *time, o.at(keyOf(st::keys_time)), st::keys_time)) k.time = static_cast<float>(*t);
+    if (!value) c.fail(o.at(keyOf(st::keys_value)), "missing required key (the setting's value at that time)");
+    else if (target.kind == SettingKind::Vec3) {
+        if (const std::optional<glm::vec3> x = asVec3(c, *value, o.at(keyOf(st::keys_value)), target)) k.value = *x;
+    } else if (const std::optional<double> d = asNumber(c, *value, o.at(keyOf(st::keys_value)), target)) {
+        k.value = glm::vec3(static_cast<float>(*d), 0.0f, 0.0f);
+    }
+    if (!c.failed() && !track.keys.empty() && !(k.time > track.keys.back().time))
+        c.fail(o.at(keyOf(st::keys_time)), withUnit(k.time, st::keys_time) + " is not after the previous key's time (" +
+                                               withUnit(track.keys.back().time, st::keys_time) +
+                                               "); a list's keys must be in increasing time");
+    o.finish();
+    track.keys.push_back(k);
+}
+
+template <class TargetOf>
+void readKeys(Ctx& c, Obj& parent, const std::string& where, TargetOf targetOf, const std::vector<std::string>& keyable,
+              std::vector<KeyTrack>& out) {
+    readChild(c, parent, "keys", "keys", [&](Obj& o) {
+        for (const auto& item : o.raw().items()) o.get(item.key());  // every target is checked below
+        for (const auto& item : o.raw().items()) {
+            const std::string path = o.at(item.key());
+            const Setting* target = targetOf(item.key());
+            if (!target) {
+                std::string what = "not a keyable setting of " + where;
+                if (const std::optional<std::string> near = closestKey(item.key(), keyable)) what += " (did you mean \"" + *near + "\"?)";
+                c.fail(path, what + "; keyable: " + joinList(keyable));
+                return;
+            }
+            KeyTrack track;
+            track.target = item.key();
+            const json* list = &item.value();
+            std::string listPath = path;
+            std::optional<Obj> form;
+            if (list->is_object()) {
+                form.emplace(c, *list, path, "a key list");
+                readEnum<Interpolation, 2>(c, *form, st::keys_interpolation, track.interpolation);
+                list = form->get("keys");
+                listPath = form->at("keys");
+                if (!list) c.fail(listPath, "missing required key (the list of keys {\"time\": s, \"value\": v})");
+            }
+            if (list && (!list->is_array() || list->empty()))
+                c.fail(listPath, "expected an array of at least one key {\"time\": s, \"value\": v}, got " + describe(*list));
+            else if (list)
+                for (size_t i = 0; i < list->size() && !c.failed(); ++i) readKeyframe(c, (*list)[i], indexed(listPath, i), *target, track);
+            if (form) form->finish();
+            if (c.failed()) return;
+            out.push_back(std::move(track));
+        }
+    });
+}
+
 // The keys of each type are those its branch looks up, in the order the messages list them.
 std::optional<Light> readLight(Ctx& c, const json& v, const std::string& path) {
     Obj o(c, v, path, "a light");
@@ -449,6 +514,8 @@ std::optional<Light> readLight(Ctx& c, const json& v, const std::string& path) {
     if (local) readFloat(c, o, st::light_range, l.range);
     readBool(c, o, local ? st::light_shadows_local : st::light_shadows_directional, l.shadows);
     readFloat(c, o, st::light_fog_scale, l.fog_scale);
+    readKeys(c, o, std::string("a ") + toString(*type) + " light",
+             [&](const std::string& t) { return lightKeyTarget(*type, t); }, lightKeyTargets(*type), l.keys);
     if (*type != LightType::Point && !c.failed()) normalizeDirection(c, path, l.direction);
     if (*type == LightType::Spot && !c.failed() && l.inner_deg > l.outer_deg)
         c.fail(o.at("inner_deg"), withUnit(l.inner_deg, st::light_inner_deg) + " must not exceed outer_deg (" +
@@ -487,6 +554,13 @@ void readDensityTexture(Ctx& c, Obj& parent, Volume& vol) {
     });
 }
 
+std::vector<std::string> keyableOn(const Volume& v) {
+    std::vector<std::string> out = volumeKeyTargets(v.type);
+    if (!v.density_texture)
+        std::erase_if(out, [](const std::string& t) { return t.starts_with("density_texture."); });
+    return out;
+}
+
 std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path) {
     Obj o(c, v, path, "a volume");
     const std::optional<VolumeType> type = readType<VolumeType, 4>(c, o, st::volume_type);
@@ -520,6 +594,11 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
     }
     readDensityTexture(c, o, vol);
     readMedium(c, o, vol.medium);
+    readKeys(c, o, std::string("a ") + toString(*type) + " volume" + (vol.density_texture ? " with a density_texture" : ""),
+             [&](const std::string& t) {
+                 return t.starts_with("density_texture.") && !vol.density_texture ? nullptr : volumeKeyTarget(*type, t);
+             },
+             keyableOn(vol), vol.keys);
     o.finish();
     return vol;
 }
@@ -746,6 +825,23 @@ ojson mediumJson(const Medium& m) {
     return j;
 }
 
+ojson keysJson(const std::vector<KeyTrack>& tracks, const std::function<const Setting*(const std::string&)>& targetOf) {
+    ojson j = ojson::object();
+    for (const KeyTrack& t : tracks) {
+        const Setting* s = targetOf(t.target);
+        ojson list = ojson::array();
+        for (const Keyframe& k : t.keys) {
+            ojson kj;
+            kj["time"] = num(k.time);
+            kj["value"] = s && s->kind == SettingKind::Vec3 ? vec(k.value) : num(k.value.x);
+            list.push_back(kj);
+        }
+        if (t.interpolation == Interpolation::Linear) j[t.target] = list;
+        else j[t.target] = {{"interpolation", toString(t.interpolation)}, {"keys", list}};
+    }
+    return j;
+}
+
 ojson lightJson(const Light& l) {
     ojson j;
     j["type"] = toString(l.type);
@@ -761,6 +857,7 @@ ojson lightJson(const Light& l) {
     if (l.type != LightType::Directional) j["range"] = num(l.range);
     j["shadows"] = l.shadows;
     j["fog_scale"] = num(l.fog_scale);
+    if (!l.keys.empty()) j["keys"] = keysJson(l.keys, [&](const std::string& t) { return lightKeyTarget(l.type, t); });
     return j;
 }
 
@@ -802,6 +899,7 @@ ojson volumeJson(const Volume& v) {
         j["density_texture"] = tj;
     }
     j["medium"] = mediumJson(v.medium);
+    if (!v.keys.empty()) j["keys"] = keysJson(v.keys, [&](const std::string& t) { return volumeKeyTarget(v.type, t); });
     return j;
 }
 
