@@ -145,7 +145,7 @@ class Obj {
 public:
     // `where` names the object in the message ("a box volume").
     Obj(Ctx& c, const json& v, std::string path, std::string where)
-        : c_(c), v_(v), path(std::move(path)), where_(std::move(where)), errorBefore_(c.failed()) {
+        : path(std::move(path)), c_(c), v_(v), where_(std::move(where)), errorBefore_(c.failed()) {
         if (!v.is_object()) c.fail(this->path, "expected an object, got " + describe(v));
     }
     bool isObject() const { return v_.is_object(); }
@@ -173,14 +173,11 @@ public:
         }
     }
 
+    const std::string path;  // the object's JSON path
+
 private:
     Ctx& c_;
     const json& v_;
-
-public:
-    const std::string path;
-
-private:
     std::string where_;
     bool errorBefore_;
     std::vector<std::string> asked_;
