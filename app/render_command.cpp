@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <cctype>
 #include <filesystem>
+#include <limits>
 #include <optional>
+
+#include <csignal>
 
 #include <unistd.h>
 
@@ -18,7 +21,9 @@
 #endif
 
 #include "cli_text.h"
+#include "core/animate.h"
 #include "core/debug_view.h"
+#include "core/sequence.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_json.h"
@@ -123,7 +128,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
     cmd->add_option("SCENE", o.scenePath, "Scene file (JSON; see docs/scene-format.md).")->required();
     cmd->add_option("-o,--output", o.outputPath,
                     "Output image: .png (exposure, ACES filmic, sRGB) or .exr (linear, 32-bit float). "
-                    "Written atomically; its folder must exist.")
+                    "Written atomically; its folder must exist. With --sequence, a run of # in the file name "
+                    "is replaced by the frame number, zero-padded to its length (out_####.png).")
         ->required();
     const std::string w = std::to_string(settings::render_width.i());
     const std::string h = std::to_string(settings::render_height.i());
@@ -136,13 +142,20 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         optionHelp(settings::render_quality, "the scene's render.quality (" + formatDefault(settings::render_quality) +
                                                  " if absent); the reference renderer ignores it"));
     o.frames = settings::cli_frames.i();
-    cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames));
+    o.framesOption = cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames));
     o.orbit = settings::cli_orbit.f();
-    cmd->add_option("--orbit", o.orbit, optionHelp(settings::cli_orbit));
+    o.orbitOption = cmd->add_option("--orbit", o.orbit, optionHelp(settings::cli_orbit));
     o.time = settings::cli_time.f();
-    cmd->add_option("--time", o.time, optionHelp(settings::cli_time));
+    o.timeOption = cmd->add_option("--time", o.time, optionHelp(settings::cli_time));
     o.fps = settings::cli_fps.f();
-    cmd->add_option("--fps", o.fps, optionHelp(settings::cli_fps));
+    cmd->add_option("--fps", o.fps, optionHelp(settings::cli_fps, "24 1/s (with --sequence, frame f is at time f / fps)"));
+    cmd->add_option("--sequence", o.sequence,
+                    "Render frames A to B (A-B, integers, 0 <= A <= B) of the scene time, frame f at f / --fps, "
+                    "each to -o with its #### replaced by f. Frames already on disk are skipped (resume) unless "
+                    "--overwrite; Ctrl-C stops after the frame being written. The temporal history is carried from "
+                    "frame to frame and warmed up the same way whatever the range, so a range rendered in parts "
+                    "equals the whole (docs/cli.md). Default: none (one image).");
+    cmd->add_flag("--overwrite", o.overwrite, "With --sequence: render frames already on disk again. Default: off.");
     auto* ref = cmd->add_flag("--reference", o.reference,
                               "Use the per-pixel reference ray marcher (ground truth; slow). Default: off.");
     auto* cpu = cmd->add_flag("--cpu", o.cpu,
@@ -152,7 +165,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                     "GPU renderer: Vulkan device whose name contains this text (case-insensitive). "
                     "Default: the BRUME_DEVICE environment variable, else a discrete GPU, an integrated GPU, "
                     "then a CPU implementation (lavapipe).");
-    cmd->add_option("--stats", o.statsPath,
+    o.statsOption = cmd->add_option("--stats", o.statsPath,
                     "Write render statistics as JSON: per-pass GPU milliseconds (GPU renderer), wall "
                     "milliseconds, froxel grid size, lit and skipped froxels. Written atomically. Default: none.");
     o.exposure = settings::cli_exposure.f();
@@ -197,6 +210,43 @@ static std::optional<CommandResult> checkDebugView(const RenderOptions& o) {
     return checkRange("--debug-slice", o.debugSlice, settings::cli_debug_slice);
 }
 
+// The run of '#' in the output's file name (not its folder): [position, length); length 0 if none.
+static std::pair<size_t, size_t> framePattern(const std::string& out) {
+    const size_t nameStart = out.find_last_of('/') == std::string::npos ? 0 : out.find_last_of('/') + 1;
+    const size_t at = out.find('#', nameStart);
+    if (at == std::string::npos) return {0, 0};
+    return {at, out.find_first_not_of('#', at) == std::string::npos ? out.size() - at : out.find_first_not_of('#', at) - at};
+}
+
+static std::string framePath(const std::string& out, int frame) {
+    const auto [at, length] = framePattern(out);
+    std::string number = std::to_string(frame);
+    if (number.size() < length) number.insert(0, length - number.size(), '0');
+    return out.substr(0, at) + number + out.substr(at + length);
+}
+
+static std::optional<CommandResult> checkSequence(const RenderOptions& o) {
+    if (o.sequence.empty()) {
+        if (o.overwrite) return badInput("--overwrite only applies to --sequence.");
+        return std::nullopt;
+    }
+    if (!parseFrameRange(o.sequence))
+        return badInput("--sequence '" + o.sequence + "' is not a frame range A-B of integers with 0 <= A <= B <= " +
+                        std::to_string(kMaxSequenceFrame) + " (example: --sequence 0-47).");
+    const std::pair<CLI::Option*, const char*> exclusive[] = {
+        {o.framesOption, "--frames"}, {o.timeOption, "--time"}, {o.orbitOption, "--orbit"}, {o.statsOption, "--stats"}};
+    for (const auto& [option, name] : exclusive)
+        if (option && option->count() > 0)
+            return badInput(std::string(name) + " cannot be combined with --sequence (frame f is rendered at time f / --fps, "
+                            "its history warmed up by the sequence itself).");
+    if (o.debugView != settings::cli_debug_view.choices.substr(0, settings::cli_debug_view.choices.find('|')))
+        return badInput("--debug-view cannot be combined with --sequence.");
+    if (framePattern(o.outputPath).second == 0)
+        return badInput(o.outputPath + ": --sequence needs a run of # in the output's file name for the frame number "
+                        "(example: -o out_####.png).");
+    return std::nullopt;
+}
+
 static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
     if (o.widthOption->count() > 0)
         if (auto e = checkRange("--width", o.width, settings::render_width)) return e;
@@ -214,6 +264,7 @@ static std::optional<CommandResult> checkOptions(const RenderOptions& o) {
     if (auto e = checkRange("--vdb-memory-mb", o.vdbMemoryMb, settings::cli_vdb_memory)) return e;
     if (auto e = checkRange("--threads", o.threads, settings::cli_threads)) return e;
     if (auto e = checkDebugView(o)) return e;
+    if (auto e = checkSequence(o)) return e;
     if (!o.statsPath.empty()) {
         const fs::path dir = fs::path(o.statsPath).parent_path().empty() ? fs::path(".") : fs::path(o.statsPath).parent_path();
         std::error_code ec;
@@ -240,22 +291,22 @@ static bool scrollsTextures(const Scene& scene) {
     return false;
 }
 
-// request.frames frames; with an orbit or a scrolling density texture, one render call per frame
+// request.frames frames; with an orbit, a scrolling density texture or keyframes, one render call per frame
 // (each with its camera and scene time, the history carried over by the session's renderer), progress
 // shown for the last only so it never goes back. Frame n of N is at time - (N - 1 - n) / fps: the
 // written frame is at --time whatever --frames is.
 static std::variant<RenderOutput, RenderFailure> renderFrames(RenderSession& session, const Scene& scene,
                                                               const RenderRequest& request, float orbitDegPerFrame,
                                                               float fps) {
-    if (orbitDegPerFrame == 0.0f && (request.frames <= 1 || !scrollsTextures(scene)))
-        return session.render(scene, request);
+    if (orbitDegPerFrame == 0.0f && (request.frames <= 1 || (!scrollsTextures(scene) && !hasKeys(scene))))
+        return session.render(bakeKeys(scene, scene.time_s), request);
     Scene s = scene;
     RenderRequest frame = request;
     frame.frames = 1;
     frame.progress = nullptr;
     for (int n = 0;; ++n) {
+        s = bakeKeys(scene, scene.time_s - static_cast<float>(request.frames - 1 - n) / fps);
         if (orbitDegPerFrame != 0.0f) s.camera = orbitCamera(scene.camera, orbitDegPerFrame * static_cast<float>(n));
-        s.time_s = scene.time_s - static_cast<float>(request.frames - 1 - n) / fps;
         frame.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
         if (n == request.frames - 1) {
             frame.progress = request.progress;
@@ -282,6 +333,87 @@ static Result<void> writeOutput(const Image& image, const RenderOptions& o, bool
     return writeImage(image, o.outputPath, o.exposure);
 }
 
+// Ctrl-C during a sequence: the frame being rendered is finished and written (atomically), then the
+// command stops; a second Ctrl-C kills at once (the default action), which leaves at most a hidden
+// temporary file, never a partial frame under its name.
+namespace {
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onInterrupt(int) {
+    gInterrupted = 1;
+    std::signal(SIGINT, SIG_DFL);
+}
+struct InterruptGuard {
+    InterruptGuard() { std::signal(SIGINT, onInterrupt); }
+    ~InterruptGuard() { std::signal(SIGINT, SIG_DFL); }
+};
+}  // namespace
+
+static bool frameOnDisk(const std::string& path) {
+    std::error_code ec;
+    return fs::is_regular_file(path, ec) && fs::file_size(path, ec) > 0 && !ec;
+}
+
+// Frames A..B (core/sequence.h): each frame's history chain starts at historyChainStart(f); when the
+// session's history is not the one frame f needs (first frame, a skipped one, a block boundary), the
+// chain is rendered again from its start without writing.
+static CommandResult renderSequence(RenderSession& session, const Scene& scene, RenderRequest request,
+                                    const RenderOptions& o, RendererKind kind) {
+    const FrameRange range = *parseFrameRange(o.sequence);
+    const int total = range.last - range.first + 1;
+    InterruptGuard guard;
+    gInterrupted = 0;
+    int next = std::numeric_limits<int>::min();  // the frame the session's history is ready for
+    int written = 0;
+    int skipped = 0;
+    int warmup = 0;
+    request.frames = 1;
+    const auto start = std::chrono::steady_clock::now();
+    auto renderAt = [&](int frame, HistoryMode mode) {
+        RenderRequest r = request;
+        r.history = mode;
+        r.progress = nullptr;
+        return session.render(bakeKeys(scene, static_cast<float>(frame) / o.fps), r);
+    };
+    for (int f = range.first; f <= range.last; ++f) {
+        const std::string path = framePath(o.outputPath, f);
+        if (!o.overwrite && frameOnDisk(path)) {
+            ++skipped;
+            continue;
+        }
+        const int chain = historyChainStart(f, scene.temporal);
+        if (next != f || chain == f - temporalWarmupFrames(scene.temporal)) {
+            for (int g = chain; g < f; ++g, ++warmup) {
+                std::variant<RenderOutput, RenderFailure> r = renderAt(g, g == chain ? HistoryMode::Restart : HistoryMode::Continue);
+                if (const RenderFailure* e = std::get_if<RenderFailure>(&r))
+                    return e->userCanFix ? badInput(e->message) : internalFailure(e->message);
+            }
+        }
+        std::variant<RenderOutput, RenderFailure> r = renderAt(f, chain == f ? HistoryMode::Restart : HistoryMode::Continue);
+        if (const RenderFailure* e = std::get_if<RenderFailure>(&r))
+            return e->userCanFix ? badInput(e->message) : internalFailure(e->message);
+        next = f + 1;
+        const RenderOutput& out = std::get<RenderOutput>(r);
+        if (!allFinite(out.image))
+            return internalFailure(std::string("the ") + rendererName(kind) + " renderer produced non-finite pixels in frame " +
+                                   std::to_string(f) + "; " + path + " was not written.");
+        if (Result<void> w = writeImage(out.image, path, o.exposure); !w) return badInput(w.error().message);
+        ++written;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const int done = f - range.first + 1;
+        std::printf("frame %d/%d: wrote %s (t = %g s, %.2f s elapsed)\n", done, total, path.c_str(),
+                    static_cast<double>(f) / o.fps, elapsed);
+        std::fflush(stdout);
+        if (gInterrupted && f < range.last)
+            return {130, "interrupted after frame " + std::to_string(f) + "; every frame written is complete; run the "
+                         "same command again to render the rest"};
+    }
+    std::printf("sequence %d-%d: %d written, %d already on disk (skipped; --overwrite renders them again), %d warm-up "
+                "frames (%s renderer, %dx%d, quality %s)\n",
+                range.first, range.last, written, skipped, warmup, rendererName(kind), request.width, request.height,
+                toString(request.quality));
+    return success();
+}
+
 CommandResult runRender(const RenderOptions& o) {
     if (auto e = checkOptions(o)) return *e;
     Result<Scene> scene = loadSceneFile(o.scenePath);
@@ -291,6 +423,10 @@ CommandResult runRender(const RenderOptions& o) {
     const RendererKind kind =
         o.reference ? RendererKind::Reference : (o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu);
     RenderRequest request = requestFromOptions(scene.value(), o);
+    if (!o.sequence.empty()) {
+        RenderSession session(kind, o.device);
+        return renderSequence(session, scene.value(), request, o, kind);
+    }
     ProgressLine progress(std::string("rendering (") + rendererName(kind) + ")");
     request.progress = [&progress](float f) { progress.update(f); };
     RenderSession session(kind, o.device);

@@ -95,10 +95,16 @@ struct RenderOptions {
     std::string statsPath;  // --stats
     std::string debugView;  // --debug-view
     int debugSlice = 0;     // --debug-slice
+    std::string sequence;   // --sequence A-B: frames A..B at --fps, written to -o with #### = the frame
+    bool overwrite = false; // --overwrite: render sequence frames already on disk again
     // Set by addRenderCommand, to tell given options from scene defaults.
     CLI::Option* widthOption = nullptr;
     CLI::Option* heightOption = nullptr;
     CLI::Option* qualityOption = nullptr;
+    CLI::Option* framesOption = nullptr;
+    CLI::Option* timeOption = nullptr;
+    CLI::Option* orbitOption = nullptr;
+    CLI::Option* statsOption = nullptr;
 };
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options);

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "animate.h"
 #include "shadows.h"
 
 namespace brume {
@@ -129,6 +130,8 @@ shd::LightData compileLight(const Light& l) {
 }
 
 CompiledScene compileScene(const Scene& scene) {
+    // Keyed settings take their values at the scene time here, so every renderer sees them.
+    if (hasKeys(scene)) return compileScene(bakeKeys(scene, scene.time_s));
     CompiledScene cs;
     cs.ambient = scene.ambient;
     cs.cameraPosition = scene.camera.position;

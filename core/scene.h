@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "density_grid.h"
+#include "keyframes.h"
 #include "settings.h"
 
 namespace brume {
@@ -80,6 +81,9 @@ struct Light {
     float fog_scale = settings::light_fog_scale.f();
     float inner_deg = settings::light_inner_deg.f();
     float outer_deg = settings::light_outer_deg.f();
+    // Settings that change with the scene time (core/animate.h); the fields above hold the values
+    // without them (what the editor edits).
+    std::vector<KeyTrack> keys;
     // Editor view state (brume-editor's hide): not in the scene format, never saved; the renderers
     // ignore it, the editor renders a copy without hidden objects (app/editor/view.h).
     bool hidden = false;
@@ -137,6 +141,9 @@ struct Volume {
     DensityGridPtr density;
     std::optional<DensityTexture> density_texture;             // any type
     Medium medium;
+    // Settings that change with the scene time (core/animate.h); the fields above hold the values
+    // without them (what the editor edits).
+    std::vector<KeyTrack> keys;
     // Editor view state (brume-editor's hide): not in the scene format, never saved; the renderers
     // ignore it, the editor renders a copy without hidden objects (app/editor/view.h).
     bool hidden = false;
@@ -172,7 +179,7 @@ struct Scene {
     std::vector<Geometry> geometry;
     // Folder of the scene file, for resolving relative paths (vdb files); not serialized.
     std::string baseDir;
-    // Scene time [s] (density textures scroll with it): a render input (brume render --time), not
+    // Scene time [s] (density textures scroll with it, keyframes are evaluated at it): a render input (brume render --time), not
     // serialized and not compared.
     float time_s = 0.0f;
     bool operator==(const Scene& o) const {

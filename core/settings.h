@@ -98,6 +98,10 @@ inline constexpr Setting medium_absorption {"volumes[].medium.absorption", K::Ve
 inline constexpr Setting medium_emission  {"volumes[].medium.emission", K::Vec3, "W/(m^2 sr m)", 0, kBig, {0, 0, 0}, "", "Radiance emitted per meter of path at density 1."};
 inline constexpr Setting medium_phase_g   {"volumes[].medium.phase_g", K::Number, "", -1, 1, {0.2}, "", "Henyey-Greenstein anisotropy: > 0 forward, < 0 backward; evaluated with |g| <= 0.999."};
 
+inline constexpr Setting keys_interpolation {"*.keys.*.interpolation", K::Choice, "", 0, 0, {0}, "linear|smooth", "How a keyed setting moves between its keys: straight lines, or smooth (a Catmull-Rom curve through the keys, clamped to the setting's range). A key list written as a plain array is linear (docs/scene-format.md, Keyframes)."};
+inline constexpr Setting keys_time        {"*.keys.*[].time", K::Number, "s", -kBig, kBig, {0}, "", "Scene time of a key; the keys of a list in strictly increasing time. Before the first key and after the last the setting holds that key's value."};
+inline constexpr Setting keys_value       {"*.keys.*[].value", K::Number, "", -kCoef, kCoef, {0}, "", "The keyed setting's value at that time: a number or an array of 3 like the setting itself, with its unit and within its range."};
+
 inline constexpr Setting geometry_type    {"geometry[].type", K::Choice, "", 0, 0, {0}, "plane|box|sphere", "Kind of surface; required."};
 inline constexpr Setting geometry_name    {"geometry[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting geometry_height  {"geometry[type=plane].height", K::Number, "m", -kBig, kBig, {0}, "", "Height of the horizontal plane (normal +Y)."};
@@ -120,6 +124,7 @@ inline constexpr std::array kAll = {
     &volume_grid, &volume_encoding, &volume_density_scale, &texture_file, &texture_grid, &texture_tile_size, &texture_scroll,
     &texture_strength, &transform_translation, &transform_rotation, &transform_scale,
     &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
+    &keys_interpolation, &keys_time, &keys_value,
     &geometry_type, &geometry_name, &geometry_height, &geometry_center, &geometry_radius, &geometry_albedo,
     &geometry_emission,
 };

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/animate.h"
 #include "io/atomic_file.h"
 
 namespace brume {
@@ -105,30 +106,82 @@ struct Ctx {
     bool failed() const { return error.has_value(); }
 };
 
-const json* findKey(const json& obj, const std::string& key) {
-    const auto it = obj.find(key);
-    return it == obj.end() ? nullptr : &*it;
+// Edit distance counting a swap of neighbours as one edit ("widht"), for "did you mean" (keys are
+// short: the quadratic cost is nothing).
+size_t editDistance(std::string_view a, std::string_view b) {
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+        for (size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
 }
 
-// True when `v` is an object whose keys are all in `allowed`; `where` names the object in the
-// message ("a box volume").
-bool checkObject(Ctx& c, const json& v, const std::string& path, std::initializer_list<std::string_view> allowed,
-                 std::string_view where) {
-    if (!v.is_object()) {
-        c.fail(path, "expected an object, got " + describe(v));
-        return false;
-    }
-    for (const auto& item : v.items()) {
-        bool known = false;
-        for (std::string_view k : allowed) known = known || item.key() == k;
-        if (!known) {
-            c.fail(child(path, item.key()),
-                   "unknown key; allowed in " + std::string(where) + ": " + joinList(allowed));
-            return false;
+// The key of `candidates` nearest to `key`, if near enough to be the one meant.
+std::optional<std::string> closestKey(const std::string& key, const std::vector<std::string>& candidates) {
+    std::optional<std::string> best;
+    size_t bestDistance = std::max<size_t>(1, std::min<size_t>(3, key.size() / 3)) + 1;
+    for (const std::string& k : candidates) {
+        const size_t d = editDistance(key, k);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = k;
         }
     }
-    return true;
+    return best;
 }
+
+// One JSON object being read, after pbrt-v4's ParameterDictionary: every lookup names a key the
+// reader knows and marks it used when present; finish() reports the first key nobody looked up,
+// listing the keys that were. So each key is spelled once, where it is read, and the allowed keys
+// of an object are exactly those its reader asks for.
+// Unknown keys are reported before problems with the object's values (a misspelt key usually causes
+// them: "fiel" leaves "file" missing), so finish() replaces an error raised while this object was
+// read. Readers therefore look up every key they know even after an error.
+class Obj {
+public:
+    // `where` names the object in the message ("a box volume").
+    Obj(Ctx& c, const json& v, std::string path, std::string where)
+        : path(std::move(path)), c_(c), v_(v), where_(std::move(where)), errorBefore_(c.failed()) {
+        if (!v.is_object()) c.fail(this->path, "expected an object, got " + describe(v));
+    }
+    bool isObject() const { return v_.is_object(); }
+    const json& raw() const { return v_; }
+    void setWhere(std::string where) { where_ = std::move(where); }
+
+    const json* get(std::string_view key) {
+        if (std::find(asked_.begin(), asked_.end(), key) == asked_.end()) asked_.emplace_back(key);
+        if (!v_.is_object()) return nullptr;
+        const auto it = v_.find(std::string(key));
+        return it == v_.end() ? nullptr : &*it;
+    }
+    bool has(std::string_view key) { return get(key) != nullptr; }
+    std::string at(std::string_view key) const { return child(path, key); }
+
+    void finish() {
+        if (errorBefore_ || !v_.is_object()) return;
+        for (const auto& item : v_.items()) {
+            if (std::find(asked_.begin(), asked_.end(), item.key()) != asked_.end()) continue;
+            std::string what = "unknown key";
+            if (const std::optional<std::string> near = closestKey(item.key(), asked_)) what += " (did you mean \"" + *near + "\"?)";
+            c_.error.reset();
+            c_.fail(at(item.key()), what + "; allowed in " + where_ + ": " + joinList(asked_));
+            return;
+        }
+    }
+
+    const std::string path;  // the object's JSON path
+
+private:
+    Ctx& c_;
+    const json& v_;
+    std::string where_;
+    bool errorBefore_;
+    std::vector<std::string> asked_;
+};
 
 // The range is checked on the float that will be stored as well as on the written value, so that a
 // float sitting on a bound (float(1e-4) < 1e-4) reads back after being written.
@@ -188,38 +241,48 @@ std::optional<glm::vec3> asVec3(Ctx& c, const json& v, const std::string& path, 
 }
 
 // Each read* leaves `out` (already holding the default) alone when the key is absent or invalid.
-void readFloat(Ctx& c, const json& obj, const std::string& path, const Setting& s, float& out) {
+void readFloat(Ctx& c, Obj& o, const Setting& s, float& out) {
     const std::string key = keyOf(s);
-    if (const json* v = findKey(obj, key))
-        if (const std::optional<double> d = asNumber(c, *v, child(path, key), s)) out = static_cast<float>(*d);
+    if (const json* v = o.get(key))
+        if (const std::optional<double> d = asNumber(c, *v, o.at(key), s)) out = static_cast<float>(*d);
 }
 
-void readInt(Ctx& c, const json& obj, const std::string& path, const Setting& s, int& out) {
+void readInt(Ctx& c, Obj& o, const Setting& s, int& out) {
     const std::string key = keyOf(s);
-    if (const json* v = findKey(obj, key))
-        if (const std::optional<int> i = asInteger(c, *v, child(path, key), s)) out = *i;
+    if (const json* v = o.get(key))
+        if (const std::optional<int> i = asInteger(c, *v, o.at(key), s)) out = *i;
 }
 
-void readVec3(Ctx& c, const json& obj, const std::string& path, const Setting& s, glm::vec3& out) {
+void readVec3(Ctx& c, Obj& o, const Setting& s, glm::vec3& out) {
     const std::string key = keyOf(s);
-    if (const json* v = findKey(obj, key))
-        if (const std::optional<glm::vec3> x = asVec3(c, *v, child(path, key), s)) out = *x;
+    if (const json* v = o.get(key))
+        if (const std::optional<glm::vec3> x = asVec3(c, *v, o.at(key), s)) out = *x;
 }
 
-void readBool(Ctx& c, const json& obj, const std::string& path, const Setting& s, bool& out) {
+void readBool(Ctx& c, Obj& o, const Setting& s, bool& out) {
     const std::string key = keyOf(s);
-    const json* v = findKey(obj, key);
+    const json* v = o.get(key);
     if (!v) return;
     if (v->is_boolean()) out = v->get<bool>();
-    else c.fail(child(path, key), "expected true or false, got " + describe(*v));
+    else c.fail(o.at(key), "expected true or false, got " + describe(*v));
 }
 
-void readString(Ctx& c, const json& obj, const std::string& path, const Setting& s, std::string& out) {
+// A string. File and grid names must not be empty; a required one's `required` says what it is for
+// the message when it is absent.
+enum class Text { Any, NonEmpty };
+void readString(Ctx& c, Obj& o, const Setting& s, std::string& out, Text rule = Text::Any, const char* required = nullptr) {
     const std::string key = keyOf(s);
-    const json* v = findKey(obj, key);
-    if (!v) return;
-    if (v->is_string()) out = v->get<std::string>();
-    else c.fail(child(path, key), "expected a string, got " + describe(*v));
+    const json* v = o.get(key);
+    if (!v) {
+        if (required) c.fail(o.at(key), std::string("missing required key (") + required + ")");
+        return;
+    }
+    if (!v->is_string()) {
+        c.fail(o.at(key), "expected a string, got " + describe(*v));
+        return;
+    }
+    out = v->get<std::string>();
+    if (out.empty() && rule == Text::NonEmpty) c.fail(o.at(key), "must not be empty");
 }
 
 // Choices are matched against the enum's toString(), so settings.h and scene.h cannot disagree
@@ -239,25 +302,22 @@ std::optional<E> asEnum(Ctx& c, const json& v, const std::string& path, const Se
 }
 
 template <class E, int N>
-void readEnum(Ctx& c, const json& obj, const std::string& path, const Setting& s, E& out) {
+void readEnum(Ctx& c, Obj& o, const Setting& s, E& out) {
     const std::string key = keyOf(s);
-    if (const json* v = findKey(obj, key))
-        if (const std::optional<E> e = asEnum<E, N>(c, *v, child(path, key), s)) out = *e;
+    if (const json* v = o.get(key))
+        if (const std::optional<E> e = asEnum<E, N>(c, *v, o.at(key), s)) out = *e;
 }
 
 // The "type" of a list element: required, and decides which keys are allowed.
 template <class E, int N>
-std::optional<E> readType(Ctx& c, const json& obj, const std::string& path, const Setting& s) {
-    if (!obj.is_object()) {
-        c.fail(path, "expected an object, got " + describe(obj));
-        return std::nullopt;
-    }
-    const json* v = findKey(obj, "type");
+std::optional<E> readType(Ctx& c, Obj& o, const Setting& s) {
+    if (!o.isObject()) return std::nullopt;
+    const json* v = o.get(keyOf(s));
     if (!v) {
-        c.fail(child(path, "type"), "missing required key; choices: " + joinList(choicesOf(s)));
+        c.fail(o.at(keyOf(s)), "missing required key; choices: " + joinList(choicesOf(s)));
         return std::nullopt;
     }
-    return asEnum<E, N>(c, *v, child(path, "type"), s);
+    return asEnum<E, N>(c, *v, o.at(keyOf(s)), s);
 }
 
 }  // namespace
@@ -269,14 +329,7 @@ namespace st = settings;
 // Direction-like vectors are compared in double: positions up to 1e6 m keep their differences.
 glm::dvec3 toD(glm::vec3 v) { return glm::dvec3(v); }
 
-void readCamera(Ctx& c, const json& v, const std::string& path, Camera& cam) {
-    if (!checkObject(c, v, path, {"position", "target", "up", "fov_y_deg", "near", "far"}, "camera")) return;
-    readVec3(c, v, path, st::camera_position, cam.position);
-    readVec3(c, v, path, st::camera_target, cam.target);
-    readVec3(c, v, path, st::camera_up, cam.up);
-    readFloat(c, v, path, st::camera_fov_y, cam.fov_y_deg);
-    readFloat(c, v, path, st::camera_near, cam.near);
-    readFloat(c, v, path, st::camera_far, cam.far);
+void checkCamera(Ctx& c, const std::string& path, const Camera& cam) {
     if (c.failed()) return;
     if (!(cam.far > cam.near))
         c.fail(child(path, "far"), withUnit(cam.far, st::camera_far) + " must exceed camera.near (" +
@@ -293,59 +346,72 @@ void readCamera(Ctx& c, const json& v, const std::string& path, Camera& cam) {
         c.fail(child(path, "up"), "must not be zero or parallel to the view direction (target - position)");
 }
 
-void readRender(Ctx& c, const json& v, const std::string& path, RenderBlock& r) {
-    if (!checkObject(c, v, path, {"width", "height", "quality"}, "render")) return;
-    readInt(c, v, path, st::render_width, r.width);
-    readInt(c, v, path, st::render_height, r.height);
-    readEnum<Quality, 4>(c, v, path, st::render_quality, r.quality);
+// The object under `key` of `parent`, read by `read(Obj&)` and checked for unknown keys.
+template <class ReadFn>
+void readChild(Ctx& c, Obj& parent, std::string_view key, const char* where, ReadFn read) {
+    const json* v = parent.get(key);
+    if (!v) return;
+    Obj o(c, *v, parent.at(key), where);
+    if (o.isObject()) read(o);
+    o.finish();
+}
+
+void readCamera(Ctx& c, Obj& o, Camera& cam) {
+    readVec3(c, o, st::camera_position, cam.position);
+    readVec3(c, o, st::camera_target, cam.target);
+    readVec3(c, o, st::camera_up, cam.up);
+    readFloat(c, o, st::camera_fov_y, cam.fov_y_deg);
+    readFloat(c, o, st::camera_near, cam.near);
+    readFloat(c, o, st::camera_far, cam.far);
+    checkCamera(c, o.path, cam);
+}
+
+void readRender(Ctx& c, Obj& o, RenderBlock& r) {
+    readInt(c, o, st::render_width, r.width);
+    readInt(c, o, st::render_height, r.height);
+    readEnum<Quality, 4>(c, o, st::render_quality, r.quality);
 }
 
 template <class T>
-void readOptional(Ctx& c, const json& v, const std::string& path, const Setting& s, std::optional<T>& out) {
-    if (!findKey(v, keyOf(s))) return;
+void readOptional(Ctx& c, Obj& o, const Setting& s, std::optional<T>& out) {
+    if (!o.has(keyOf(s))) return;
     T value{};
-    if constexpr (std::is_same_v<T, int>) readInt(c, v, path, s, value);
-    else readFloat(c, v, path, s, value);
+    if constexpr (std::is_same_v<T, int>) readInt(c, o, s, value);
+    else readFloat(c, o, s, value);
     if (!c.failed()) out = value;
 }
 
-void readFroxels(Ctx& c, const json& v, const std::string& path, FroxelOverrides& f) {
-    if (!checkObject(c, v, path, {"tile_px", "slices", "near", "far", "distribution"}, "froxels")) return;
-    readOptional(c, v, path, st::froxels_tile_px, f.tile_px);
-    readOptional(c, v, path, st::froxels_slices, f.slices);
-    readOptional(c, v, path, st::froxels_near, f.near);
-    readOptional(c, v, path, st::froxels_far, f.far);
-    readOptional(c, v, path, st::froxels_distribution, f.distribution);
+void readFroxels(Ctx& c, Obj& o, FroxelOverrides& f) {
+    readOptional(c, o, st::froxels_tile_px, f.tile_px);
+    readOptional(c, o, st::froxels_slices, f.slices);
+    readOptional(c, o, st::froxels_near, f.near);
+    readOptional(c, o, st::froxels_far, f.far);
+    readOptional(c, o, st::froxels_distribution, f.distribution);
     if (!c.failed() && f.near && f.far && !(*f.far > *f.near))
-        c.fail(child(path, "far"), withUnit(*f.far, st::froxels_far) + " must exceed froxels.near (" +
-                                       withUnit(*f.near, st::froxels_near) + ")");
+        c.fail(o.at("far"), withUnit(*f.far, st::froxels_far) + " must exceed froxels.near (" +
+                                withUnit(*f.near, st::froxels_near) + ")");
 }
 
-void readTemporal(Ctx& c, const json& v, const std::string& path, Temporal& t) {
-    if (!checkObject(c, v, path, {"enabled", "history_weight"}, "temporal")) return;
-    readBool(c, v, path, st::temporal_enabled, t.enabled);
-    readFloat(c, v, path, st::temporal_history_weight, t.history_weight);
+void readTemporal(Ctx& c, Obj& o, Temporal& t) {
+    readBool(c, o, st::temporal_enabled, t.enabled);
+    readFloat(c, o, st::temporal_history_weight, t.history_weight);
 }
 
-void readTransform(Ctx& c, const json& obj, const std::string& objPath, Transform& t) {
-    const json* v = findKey(obj, "transform");
-    if (!v) return;
-    const std::string path = child(objPath, "transform");
-    if (!checkObject(c, *v, path, {"translation", "rotation_deg", "scale"}, "a transform")) return;
-    readVec3(c, *v, path, st::transform_translation, t.translation);
-    readVec3(c, *v, path, st::transform_rotation, t.rotation_deg);
-    readVec3(c, *v, path, st::transform_scale, t.scale);
+void readTransform(Ctx& c, Obj& parent, Transform& t) {
+    readChild(c, parent, "transform", "a transform", [&](Obj& o) {
+        readVec3(c, o, st::transform_translation, t.translation);
+        readVec3(c, o, st::transform_rotation, t.rotation_deg);
+        readVec3(c, o, st::transform_scale, t.scale);
+    });
 }
 
-void readMedium(Ctx& c, const json& obj, const std::string& objPath, Medium& m) {
-    const json* v = findKey(obj, "medium");
-    if (!v) return;
-    const std::string path = child(objPath, "medium");
-    if (!checkObject(c, *v, path, {"scattering", "absorption", "emission", "phase_g"}, "a medium")) return;
-    readVec3(c, *v, path, st::medium_scattering, m.scattering);
-    readVec3(c, *v, path, st::medium_absorption, m.absorption);
-    readVec3(c, *v, path, st::medium_emission, m.emission);
-    readFloat(c, *v, path, st::medium_phase_g, m.phase_g);
+void readMedium(Ctx& c, Obj& parent, Medium& m) {
+    readChild(c, parent, "medium", "a medium", [&](Obj& o) {
+        readVec3(c, o, st::medium_scattering, m.scattering);
+        readVec3(c, o, st::medium_absorption, m.absorption);
+        readVec3(c, o, st::medium_emission, m.emission);
+        readFloat(c, o, st::medium_phase_g, m.phase_g);
+    });
 }
 
 }  // namespace
@@ -363,78 +429,96 @@ void normalizeDirection(Ctx& c, const std::string& path, glm::vec3& dir) {
     if (std::abs(len - 1.0) > 1.0e-6) dir = glm::vec3(toD(dir) / len);
 }
 
+// "keys": {"TARGET": LIST, ...}, LIST = [KEY, ...] (linear) or {"interpolation": "linear" | "smooth",
+// "keys": [KEY, ...]}, KEY = {"time": s, "value": v}. `targetOf` names the setting a target drives
+// (null: not keyable on this object's type); `keyable` lists those that are, for the message.
+void readKeyframe(Ctx& c, const json& v, const std::string& path, const Setting& target, KeyTrack& track) {
+    Obj o(c, v, path, "a key");
+    if (!o.isObject()) return;
+    Keyframe k;
+    const json* time = o.get(keyOf(st::keys_time));
+    const json* value = o.get(keyOf(st::keys_value));
+    if (!time) c.fail(o.at(keyOf(st::keys_time)), "missing required key (the key's scene time in s)");
+    else if (const std::optional<double> t = asNumber(c, *time, o.at(keyOf(st::keys_time)), st::keys_time)) k.time = static_cast<float>(*t);
+    if (!value) c.fail(o.at(keyOf(st::keys_value)), "missing required key (the setting's value at that time)");
+    else if (target.kind == SettingKind::Vec3) {
+        if (const std::optional<glm::vec3> x = asVec3(c, *value, o.at(keyOf(st::keys_value)), target)) k.value = *x;
+    } else if (const std::optional<double> d = asNumber(c, *value, o.at(keyOf(st::keys_value)), target)) {
+        k.value = glm::vec3(static_cast<float>(*d), 0.0f, 0.0f);
+    }
+    if (!c.failed() && !track.keys.empty() && !(k.time > track.keys.back().time))
+        c.fail(o.at(keyOf(st::keys_time)), withUnit(k.time, st::keys_time) + " is not after the previous key's time (" +
+                                               withUnit(track.keys.back().time, st::keys_time) +
+                                               "); a list's keys must be in increasing time");
+    o.finish();
+    track.keys.push_back(k);
+}
+
+template <class TargetOf>
+void readKeys(Ctx& c, Obj& parent, const std::string& where, TargetOf targetOf, const std::vector<std::string>& keyable,
+              std::vector<KeyTrack>& out) {
+    readChild(c, parent, "keys", "keys", [&](Obj& o) {
+        for (const auto& item : o.raw().items()) o.get(item.key());  // every target is checked below
+        for (const auto& item : o.raw().items()) {
+            const std::string path = o.at(item.key());
+            const Setting* target = targetOf(item.key());
+            if (!target) {
+                std::string what = "not a keyable setting of " + where;
+                if (const std::optional<std::string> near = closestKey(item.key(), keyable)) what += " (did you mean \"" + *near + "\"?)";
+                c.fail(path, what + "; keyable: " + joinList(keyable));
+                return;
+            }
+            KeyTrack track;
+            track.target = item.key();
+            const json* list = &item.value();
+            std::string listPath = path;
+            std::optional<Obj> form;
+            if (list->is_object()) {
+                form.emplace(c, *list, path, "a key list");
+                readEnum<Interpolation, 2>(c, *form, st::keys_interpolation, track.interpolation);
+                list = form->get("keys");
+                listPath = form->at("keys");
+                if (!list) c.fail(listPath, "missing required key (the list of keys {\"time\": s, \"value\": v})");
+            }
+            if (list && (!list->is_array() || list->empty()))
+                c.fail(listPath, "expected an array of at least one key {\"time\": s, \"value\": v}, got " + describe(*list));
+            else if (list)
+                for (size_t i = 0; i < list->size() && !c.failed(); ++i) readKeyframe(c, (*list)[i], indexed(listPath, i), *target, track);
+            if (form) form->finish();
+            if (c.failed()) return;
+            out.push_back(std::move(track));
+        }
+    });
+}
+
+// The keys of each type are those its branch looks up, in the order the messages list them.
 std::optional<Light> readLight(Ctx& c, const json& v, const std::string& path) {
-    const std::optional<LightType> type = readType<LightType, 3>(c, v, path, st::light_type);
+    Obj o(c, v, path, "a light");
+    const std::optional<LightType> type = readType<LightType, 3>(c, o, st::light_type);
     if (!type) return std::nullopt;
-    const bool ok = *type == LightType::Directional
-        ? checkObject(c, v, path, {"type", "name", "direction", "color", "intensity", "shadows", "fog_scale"},
-                      "a directional light")
-        : *type == LightType::Point
-        ? checkObject(c, v, path,
-                      {"type", "name", "position", "color", "intensity", "range", "shadows", "fog_scale"},
-                      "a point light")
-        : checkObject(c, v, path,
-                      {"type", "name", "position", "direction", "inner_deg", "outer_deg", "color", "intensity",
-                       "range", "shadows", "fog_scale"},
-                      "a spot light");
-    if (!ok) return std::nullopt;
+    o.setWhere(std::string("a ") + toString(*type) + " light");
     Light l = makeLight(*type);
     const bool local = *type != LightType::Directional;
-    readString(c, v, path, st::light_name, l.name);
-    readVec3(c, v, path, st::light_color, l.color);
-    readFloat(c, v, path, local ? st::light_intensity_local : st::light_intensity_directional, l.intensity);
-    readBool(c, v, path, local ? st::light_shadows_local : st::light_shadows_directional, l.shadows);
-    readFloat(c, v, path, st::light_fog_scale, l.fog_scale);
-    if (local) {
-        readVec3(c, v, path, st::light_position, l.position);
-        readFloat(c, v, path, st::light_range, l.range);
-    }
-    if (*type != LightType::Point) {
-        readVec3(c, v, path, st::light_direction, l.direction);
-        if (!c.failed()) normalizeDirection(c, path, l.direction);
-    }
+    readString(c, o, st::light_name, l.name);
+    if (local) readVec3(c, o, st::light_position, l.position);
+    if (*type != LightType::Point) readVec3(c, o, st::light_direction, l.direction);
     if (*type == LightType::Spot) {
-        readFloat(c, v, path, st::light_inner_deg, l.inner_deg);
-        readFloat(c, v, path, st::light_outer_deg, l.outer_deg);
-        if (!c.failed() && l.inner_deg > l.outer_deg)
-            c.fail(child(path, "inner_deg"), withUnit(l.inner_deg, st::light_inner_deg) +
-                                                 " must not exceed outer_deg (" +
-                                                 withUnit(l.outer_deg, st::light_outer_deg) + ")");
+        readFloat(c, o, st::light_inner_deg, l.inner_deg);
+        readFloat(c, o, st::light_outer_deg, l.outer_deg);
     }
+    readVec3(c, o, st::light_color, l.color);
+    readFloat(c, o, local ? st::light_intensity_local : st::light_intensity_directional, l.intensity);
+    if (local) readFloat(c, o, st::light_range, l.range);
+    readBool(c, o, local ? st::light_shadows_local : st::light_shadows_directional, l.shadows);
+    readFloat(c, o, st::light_fog_scale, l.fog_scale);
+    readKeys(c, o, std::string("a ") + toString(*type) + " light",
+             [&](const std::string& t) { return lightKeyTarget(*type, t); }, lightKeyTargets(*type), l.keys);
+    if (*type != LightType::Point && !c.failed()) normalizeDirection(c, path, l.direction);
+    if (*type == LightType::Spot && !c.failed() && l.inner_deg > l.outer_deg)
+        c.fail(o.at("inner_deg"), withUnit(l.inner_deg, st::light_inner_deg) + " must not exceed outer_deg (" +
+                                      withUnit(l.outer_deg, st::light_outer_deg) + ")");
+    o.finish();
     return l;
-}
-
-bool checkVolumeKeys(Ctx& c, const json& v, const std::string& path, VolumeType type) {
-    switch (type) {
-        case VolumeType::Box:
-            return checkObject(c, v, path, {"type", "name", "transform", "edge_fade", "density_texture", "medium"},
-                               "a box volume");
-        case VolumeType::Height:
-            return checkObject(c, v, path,
-                               {"type", "name", "base_height", "profile", "falloff", "transition_height",
-                                "density_texture", "medium"},
-                               "a height volume");
-        case VolumeType::Depth:
-            return checkObject(c, v, path, {"type", "name", "visibility_distance", "start_distance", "density_texture", "medium"},
-                               "a depth volume");
-        case VolumeType::Vdb:
-            return checkObject(c, v, path, {"type", "name", "file", "grid", "encoding", "transform", "density_scale",
-                                "density_texture", "medium"},
-                               "a vdb volume");
-    }
-    return false;
-}
-
-void readVdbFile(Ctx& c, const json& v, const std::string& path, Volume& vol) {
-    if (!findKey(v, "file")) {
-        c.fail(child(path, "file"), "missing required key (the OpenVDB file of a vdb volume)");
-        return;
-    }
-    readString(c, v, path, st::volume_file, vol.file);
-    if (!c.failed() && vol.file.empty()) c.fail(child(path, "file"), "must not be empty");
-    readString(c, v, path, st::volume_grid, vol.grid);
-    if (!c.failed() && vol.grid.empty()) c.fail(child(path, "grid"), "must not be empty");
-    readEnum<VdbEncoding, 3>(c, v, path, st::volume_encoding, vol.encoding);
 }
 
 // The GPU samples all vdb volumes of a frame with one shader variant, compiled for one encoding
@@ -455,87 +539,98 @@ void checkOneEncoding(Ctx& c, const std::vector<Volume>& volumes) {
     }
 }
 
-void readDensityTexture(Ctx& c, const json& v, const std::string& volumePath, Volume& vol) {
-    const json* t = findKey(v, "density_texture");
-    if (!t) return;
-    const std::string path = child(volumePath, "density_texture");
-    if (!checkObject(c, *t, path, {"file", "grid", "tile_size_m", "scroll_mps", "strength"}, "density_texture"))
-        return;
-    DensityTexture tex;
-    if (!findKey(*t, "file")) c.fail(child(path, "file"), "missing required key (the OpenVDB file of the texture)");
-    readString(c, *t, path, st::texture_file, tex.file);
-    if (!c.failed() && tex.file.empty()) c.fail(child(path, "file"), "must not be empty");
-    readString(c, *t, path, st::texture_grid, tex.grid);
-    if (!c.failed() && tex.grid.empty()) c.fail(child(path, "grid"), "must not be empty");
-    readFloat(c, *t, path, st::texture_tile_size, tex.tile_size_m);
-    readVec3(c, *t, path, st::texture_scroll, tex.scroll_mps);
-    readFloat(c, *t, path, st::texture_strength, tex.strength);
-    if (!c.failed()) vol.density_texture = tex;
+void readDensityTexture(Ctx& c, Obj& parent, Volume& vol) {
+    readChild(c, parent, "density_texture", "density_texture", [&](Obj& o) {
+        DensityTexture tex;
+        readString(c, o, st::texture_file, tex.file, Text::NonEmpty, "the OpenVDB file of the texture");
+        readString(c, o, st::texture_grid, tex.grid, Text::NonEmpty);
+        readFloat(c, o, st::texture_tile_size, tex.tile_size_m);
+        readVec3(c, o, st::texture_scroll, tex.scroll_mps);
+        readFloat(c, o, st::texture_strength, tex.strength);
+        if (!c.failed()) vol.density_texture = tex;
+    });
+}
+
+std::vector<std::string> keyableOn(const Volume& v) {
+    std::vector<std::string> out = volumeKeyTargets(v.type);
+    if (!v.density_texture)
+        std::erase_if(out, [](const std::string& t) { return t.starts_with("density_texture."); });
+    return out;
 }
 
 std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path) {
-    const std::optional<VolumeType> type = readType<VolumeType, 4>(c, v, path, st::volume_type);
-    if (!type || !checkVolumeKeys(c, v, path, *type)) return std::nullopt;
+    Obj o(c, v, path, "a volume");
+    const std::optional<VolumeType> type = readType<VolumeType, 4>(c, o, st::volume_type);
+    if (!type) return std::nullopt;
+    o.setWhere(std::string("a ") + toString(*type) + " volume");
     Volume vol;
     vol.type = *type;
-    readString(c, v, path, st::volume_name, vol.name);
-    readMedium(c, v, path, vol.medium);
-    readDensityTexture(c, v, path, vol);
+    readString(c, o, st::volume_name, vol.name);
     switch (*type) {
         case VolumeType::Box:
-            readTransform(c, v, path, vol.transform);
-            readFloat(c, v, path, st::volume_edge_fade, vol.edge_fade);
+            readTransform(c, o, vol.transform);
+            readFloat(c, o, st::volume_edge_fade, vol.edge_fade);
             break;
         case VolumeType::Height:
-            readFloat(c, v, path, st::volume_base_height, vol.base_height);
-            readEnum<HeightProfile, 2>(c, v, path, st::volume_profile, vol.profile);
-            readFloat(c, v, path, st::volume_falloff, vol.falloff);
-            readFloat(c, v, path, st::volume_transition_height, vol.transition_height);
+            readFloat(c, o, st::volume_base_height, vol.base_height);
+            readEnum<HeightProfile, 2>(c, o, st::volume_profile, vol.profile);
+            readFloat(c, o, st::volume_falloff, vol.falloff);
+            readFloat(c, o, st::volume_transition_height, vol.transition_height);
             break;
         case VolumeType::Depth:
-            readFloat(c, v, path, st::volume_visibility_distance, vol.visibility_distance);
-            readFloat(c, v, path, st::volume_start_distance, vol.start_distance);
+            readFloat(c, o, st::volume_visibility_distance, vol.visibility_distance);
+            readFloat(c, o, st::volume_start_distance, vol.start_distance);
             break;
         case VolumeType::Vdb:
-            readVdbFile(c, v, path, vol);
-            readTransform(c, v, path, vol.transform);
-            readFloat(c, v, path, st::volume_density_scale, vol.density_scale);
+            readString(c, o, st::volume_file, vol.file, Text::NonEmpty, "the OpenVDB file of a vdb volume");
+            readString(c, o, st::volume_grid, vol.grid, Text::NonEmpty);
+            readEnum<VdbEncoding, 3>(c, o, st::volume_encoding, vol.encoding);
+            readTransform(c, o, vol.transform);
+            readFloat(c, o, st::volume_density_scale, vol.density_scale);
             break;
     }
+    readDensityTexture(c, o, vol);
+    readMedium(c, o, vol.medium);
+    readKeys(c, o, std::string("a ") + toString(*type) + " volume" + (vol.density_texture ? " with a density_texture" : ""),
+             [&](const std::string& t) {
+                 return t.starts_with("density_texture.") && !vol.density_texture ? nullptr : volumeKeyTarget(*type, t);
+             },
+             keyableOn(vol), vol.keys);
+    o.finish();
     return vol;
 }
 
 std::optional<Geometry> readGeometry(Ctx& c, const json& v, const std::string& path) {
-    const std::optional<GeometryType> type = readType<GeometryType, 3>(c, v, path, st::geometry_type);
+    Obj o(c, v, path, "a geometry");
+    const std::optional<GeometryType> type = readType<GeometryType, 3>(c, o, st::geometry_type);
     if (!type) return std::nullopt;
-    const bool ok = *type == GeometryType::Plane
-        ? checkObject(c, v, path, {"type", "name", "height", "albedo", "emission"}, "a plane")
-        : *type == GeometryType::Box
-        ? checkObject(c, v, path, {"type", "name", "transform", "albedo", "emission"}, "a box")
-        : checkObject(c, v, path, {"type", "name", "center", "radius", "albedo", "emission"}, "a sphere");
-    if (!ok) return std::nullopt;
+    o.setWhere(std::string("a ") + toString(*type));
     Geometry g;
     g.type = *type;
-    readString(c, v, path, st::geometry_name, g.name);
-    readVec3(c, v, path, st::geometry_albedo, g.albedo);
-    readVec3(c, v, path, st::geometry_emission, g.emission);
-    if (*type == GeometryType::Plane) readFloat(c, v, path, st::geometry_height, g.height);
-    if (*type == GeometryType::Box) readTransform(c, v, path, g.transform);
+    readString(c, o, st::geometry_name, g.name);
+    if (*type == GeometryType::Plane) readFloat(c, o, st::geometry_height, g.height);
+    if (*type == GeometryType::Box) readTransform(c, o, g.transform);
     if (*type == GeometryType::Sphere) {
-        readVec3(c, v, path, st::geometry_center, g.center);
-        readFloat(c, v, path, st::geometry_radius, g.radius);
+        readVec3(c, o, st::geometry_center, g.center);
+        readFloat(c, o, st::geometry_radius, g.radius);
     }
+    readVec3(c, o, st::geometry_albedo, g.albedo);
+    readVec3(c, o, st::geometry_emission, g.emission);
+    o.finish();
     return g;
 }
 
 template <class T, class ReadOne>
-void readList(Ctx& c, const json& v, const std::string& path, std::vector<T>& out, ReadOne readOne) {
-    if (!v.is_array()) {
-        c.fail(path, "expected an array, got " + describe(v));
+void readList(Ctx& c, Obj& parent, std::string_view key, std::vector<T>& out, ReadOne readOne) {
+    const json* v = parent.get(key);
+    if (!v) return;
+    const std::string path = parent.at(key);
+    if (!v->is_array()) {
+        c.fail(path, "expected an array, got " + describe(*v));
         return;
     }
-    for (size_t i = 0; i < v.size() && !c.failed(); ++i)
-        if (std::optional<T> item = readOne(c, v[i], indexed(path, i))) out.push_back(std::move(*item));
+    for (size_t i = 0; i < v->size() && !c.failed(); ++i)
+        if (std::optional<T> item = readOne(c, (*v)[i], indexed(path, i))) out.push_back(std::move(*item));
 }
 
 }  // namespace
@@ -616,8 +711,8 @@ std::optional<json> parseJson(Ctx& c, std::string_view text) {
     return std::nullopt;
 }
 
-bool checkVersion(Ctx& c, const json& root) {
-    const json* v = findKey(root, "brume_scene");
+bool checkVersion(Ctx& c, Obj& root) {
+    const json* v = root.get("brume_scene");
     if (!v) {
         c.fail("brume_scene", "missing required key (the format version; this build reads " +
                                   std::to_string(kVersion) + ")");
@@ -640,22 +735,19 @@ void readScene(Ctx& c, const json& root, Scene& s) {
         c.fail("", "expected a JSON object at the top level, got " + describe(root));
         return;
     }
-    if (!checkVersion(c, root)) return;
-    if (!checkObject(c, root, "",
-                     {"brume_scene", "camera", "render", "froxels", "temporal", "ambient", "lights", "volumes",
-                      "geometry"},
-                     "a scene"))
-        return;
+    Obj o(c, root, "", "a scene");
+    if (!checkVersion(c, o)) return;
     s.version = kVersion;
-    if (const json* v = findKey(root, "camera")) readCamera(c, *v, "camera", s.camera);
-    if (const json* v = findKey(root, "render")) readRender(c, *v, "render", s.render);
-    if (const json* v = findKey(root, "froxels")) readFroxels(c, *v, "froxels", s.froxels);
-    if (const json* v = findKey(root, "temporal")) readTemporal(c, *v, "temporal", s.temporal);
-    readVec3(c, root, "", st::ambient, s.ambient);
-    if (const json* v = findKey(root, "lights")) readList(c, *v, "lights", s.lights, readLight);
-    if (const json* v = findKey(root, "volumes")) readList(c, *v, "volumes", s.volumes, readVolume);
+    readChild(c, o, "camera", "camera", [&](Obj& x) { readCamera(c, x, s.camera); });
+    readChild(c, o, "render", "render", [&](Obj& x) { readRender(c, x, s.render); });
+    readChild(c, o, "froxels", "froxels", [&](Obj& x) { readFroxels(c, x, s.froxels); });
+    readChild(c, o, "temporal", "temporal", [&](Obj& x) { readTemporal(c, x, s.temporal); });
+    readVec3(c, o, st::ambient, s.ambient);
+    readList(c, o, "lights", s.lights, readLight);
+    readList(c, o, "volumes", s.volumes, readVolume);
     checkOneEncoding(c, s.volumes);
-    if (const json* v = findKey(root, "geometry")) readList(c, *v, "geometry", s.geometry, readGeometry);
+    readList(c, o, "geometry", s.geometry, readGeometry);
+    o.finish();
 }
 
 Result<std::string> readTextFile(const std::string& path) {
@@ -730,6 +822,23 @@ ojson mediumJson(const Medium& m) {
     return j;
 }
 
+ojson keysJson(const std::vector<KeyTrack>& tracks, const std::function<const Setting*(const std::string&)>& targetOf) {
+    ojson j = ojson::object();
+    for (const KeyTrack& t : tracks) {
+        const Setting* s = targetOf(t.target);
+        ojson list = ojson::array();
+        for (const Keyframe& k : t.keys) {
+            ojson kj;
+            kj["time"] = num(k.time);
+            kj["value"] = s && s->kind == SettingKind::Vec3 ? vec(k.value) : num(k.value.x);
+            list.push_back(kj);
+        }
+        if (t.interpolation == Interpolation::Linear) j[t.target] = list;
+        else j[t.target] = {{"interpolation", toString(t.interpolation)}, {"keys", list}};
+    }
+    return j;
+}
+
 ojson lightJson(const Light& l) {
     ojson j;
     j["type"] = toString(l.type);
@@ -745,6 +854,7 @@ ojson lightJson(const Light& l) {
     if (l.type != LightType::Directional) j["range"] = num(l.range);
     j["shadows"] = l.shadows;
     j["fog_scale"] = num(l.fog_scale);
+    if (!l.keys.empty()) j["keys"] = keysJson(l.keys, [&](const std::string& t) { return lightKeyTarget(l.type, t); });
     return j;
 }
 
@@ -786,6 +896,7 @@ ojson volumeJson(const Volume& v) {
         j["density_texture"] = tj;
     }
     j["medium"] = mediumJson(v.medium);
+    if (!v.keys.empty()) j["keys"] = keysJson(v.keys, [&](const std::string& t) { return volumeKeyTarget(v.type, t); });
     return j;
 }
 

@@ -11,6 +11,7 @@ BRUME_PACKAGES=(
   libglm-dev libimgui-dev libglfw3-dev libstb-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   xvfb xauth xdotool
+  slurm-wlm  # tests/slurm_farm.sh: a one-node Slurm on localhost (32 s to install, daemons up in 1 s)
 )
 
 brume_missing_packages() {

@@ -137,6 +137,41 @@ TEST(EditorActions, DeleteDuplicateRenameAndAddEveryKind) {
     EXPECT_TRUE(back.value() == doc.scene());
 }
 
+// Keyframes are not edited in the editor yet (the timeline is to come), but a keyed scene must survive
+// it: edits, duplicates, undo and save keep every track.
+TEST(EditorActions, KeyedSceneKeepsItsKeysThroughEditsUndoAndSave) {
+    const fs::path dir = tempDir("keyed");
+    Result<Scene> s = loadSceneFile(kDefaultScene);
+    ASSERT_TRUE(s.ok());
+    KeyTrack scattering;
+    scattering.target = "medium.scattering";
+    scattering.keys = {{0.0f, glm::vec3(0.1f)}, {2.0f, glm::vec3(0.5f, 0.4f, 0.3f)}};
+    KeyTrack intensity;
+    intensity.target = "intensity";
+    intensity.interpolation = Interpolation::Smooth;
+    intensity.keys = {{0.0f, glm::vec3(1.0f, 0, 0)}, {1.0f, glm::vec3(4.0f, 0, 0)}, {3.0f, glm::vec3(2.0f, 0, 0)}};
+    s.value().volumes[0].keys = {scattering};
+    s.value().lights[0].keys = {intensity};
+    Document doc(s.value(), (dir / "scene.json").string());
+    const Scene before = doc.scene();
+    run(doc, "set volumes[0].medium.phase_g 0.5");
+    run(doc, "set lights[0].color 1 0.5 0.25");
+    run(doc, "duplicate light 0");
+    EXPECT_EQ(doc.scene().volumes[0].keys, before.volumes[0].keys);
+    EXPECT_EQ(doc.scene().lights[0].keys, before.lights[0].keys);
+    EXPECT_EQ(doc.scene().lights[1].keys, before.lights[0].keys);  // the copy goes right after
+    run(doc, "save");
+    Result<Scene> saved = loadSceneFile((dir / "scene.json").string());
+    ASSERT_TRUE(saved.ok()) << saved.error().message;
+    EXPECT_EQ(saved.value().volumes[0].keys, before.volumes[0].keys);
+    EXPECT_EQ(saved.value().lights[0].keys, before.lights[0].keys);
+    run(doc, "undo");
+    run(doc, "undo");
+    run(doc, "undo");
+    EXPECT_TRUE(doc.scene() == before);
+    fs::remove_all(dir);
+}
+
 TEST(EditorActions, ActionsFormatAndParseBackExactly) {
     for (const Action& a : {Action{"rename", {"volume", "0", "a \"quoted\" name\\ # x"}}, Action{"undo", {}},
                             Action{"set", {"camera.position", "1", "-2.5", "3e-4"}}}) {

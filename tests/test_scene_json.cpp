@@ -14,6 +14,8 @@
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
 
+#include <nlohmann/json.hpp>
+
 namespace brume {
 namespace {
 
@@ -392,7 +394,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 1, "fog": {}})",
      "scene.json: fog: unknown key; allowed in a scene: brume_scene, camera, render, froxels, temporal, ambient, lights, volumes, geometry"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "falloff": 1}]})",
-     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, density_texture, medium"},
+     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, density_texture, medium, keys"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "medium": {"albedo": 1}}]})",
      "scene.json: volumes[0].medium.albedo: unknown key; allowed in a medium: scattering, absorption, emission, phase_g"},
     {R"({"brume_scene": 1, "camera": {"fov_y_deg": "wide"}})", "scene.json: camera.fov_y_deg: expected a number, got \"wide\""},
@@ -428,7 +430,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 1, "lights": [{"type": "spot", "inner_deg": 40, "outer_deg": 30}]})",
      "scene.json: lights[0].inner_deg: 40 deg must not exceed outer_deg (30 deg)"},
     {R"({"brume_scene": 1, "lights": [{"type": "point", "direction": [0, -1, 0]}]})",
-     "scene.json: lights[0].direction: unknown key; allowed in a point light: type, name, position, color, intensity, range, shadows, fog_scale"},
+     "scene.json: lights[0].direction: unknown key; allowed in a point light: type, name, position, color, intensity, range, shadows, fog_scale, keys"},
     {R"({"brume_scene": 1, "froxels": {"near": 10, "far": 2}})", "scene.json: froxels.far: 2 m must exceed froxels.near (10 m)"},
     {R"({"brume_scene": 1, "froxels": {"slices": 0}})", "scene.json: froxels.slices: 0 is out of range [1, 1024]"},
     {R"({"brume_scene": 1, "camera": {"fov_y_deg": 30, "fov_y_deg": 40}})", "scene.json: camera.fov_y_deg: duplicate key"},
@@ -465,6 +467,186 @@ TEST(SceneJson, DocsTableListsEverySetting) {
         for (size_t p = key.find('|'); p != std::string::npos; p = key.find('|', p + 2)) key.replace(p, 1, "\\|");
         EXPECT_NE(table.find("| `" + key + "` |"), std::string::npos) << s->path;
     }
+}
+
+}  // namespace
+}  // namespace brume
+
+// Keys are read once (io/scene_json.cpp, Obj): a key no reader looks up is an error at every level,
+// with the keys that level knows and, for a near miss, the key meant.
+namespace brume {
+namespace {
+
+TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
+    const ErrorCase cases[] = {
+        {R"({"brume_scene": 1, "camera": {"fov": 40}})",
+         "scene.json: camera.fov: unknown key; allowed in camera: position, target, up, fov_y_deg, near, far"},
+        {R"({"brume_scene": 1, "render": {"widht": 40}})",
+         "scene.json: render.widht: unknown key (did you mean \"width\"?); allowed in render: width, height, quality"},
+        {R"({"brume_scene": 1, "froxels": {"tiles": 4}})",
+         "scene.json: froxels.tiles: unknown key; allowed in froxels: tile_px, slices, near, far, distribution"},
+        {R"({"brume_scene": 1, "temporal": {"weight": 0.5}})",
+         "scene.json: temporal.weight: unknown key; allowed in temporal: enabled, history_weight"},
+        {R"({"brume_scene": 1, "lights": [{"type": "spot", "fogscale": 2}]})",
+         "scene.json: lights[0].fogscale: unknown key (did you mean \"fog_scale\"?); allowed in a spot light: type, name, "
+         "position, direction, inner_deg, outer_deg, color, intensity, range, shadows, fog_scale, keys"},
+        {R"({"brume_scene": 1, "lights": [{"type": "directional", "position": [0, 1, 0]}]})",
+         "scene.json: lights[0].position: unknown key; allowed in a directional light: type, name, direction, color, "
+         "intensity, shadows, fog_scale, keys"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "height", "fallof": 1}]})",
+         "scene.json: volumes[0].fallof: unknown key (did you mean \"falloff\"?); allowed in a height volume: type, name, "
+         "base_height, profile, falloff, transition_height, density_texture, medium, keys"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "depth", "medium": {}, "start": 1}]})",
+         "scene.json: volumes[0].start: unknown key; allowed in a depth volume: type, name, visibility_distance, "
+         "start_distance, density_texture, medium, keys"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "box", "transform": {"rotation": [0, 1, 0]}}]})",
+         "scene.json: volumes[0].transform.rotation: unknown key; allowed in a transform: translation, rotation_deg, scale"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": "a.vdb", "scale": 2}]})",
+         "scene.json: volumes[0].scale: unknown key; allowed in a vdb volume: type, name, file, grid, encoding, transform, "
+         "density_scale, density_texture, medium, keys"},
+        {R"({"brume_scene": 1, "geometry": [{"type": "sphere", "centre": [0, 1, 0]}]})",
+         "scene.json: geometry[0].centre: unknown key (did you mean \"center\"?); allowed in a sphere: type, name, center, "
+         "radius, albedo, emission"},
+        {R"({"brume_scene": 1, "geometry": [{"type": "box", "transform": {"scales": [1, 1, 1]}}]})",
+         "scene.json: geometry[0].transform.scales: unknown key (did you mean \"scale\"?); allowed in a transform: "
+         "translation, rotation_deg, scale"},
+        {R"({"brume_scene": 1, "ambiant": [0, 0, 0]})",
+         "scene.json: ambiant: unknown key (did you mean \"ambient\"?); allowed in a scene: brume_scene, camera, render, "
+         "froxels, temporal, ambient, lights, volumes, geometry"},
+    };
+    for (const ErrorCase& c : cases) EXPECT_EQ(parseError(c.text), c.message) << "input: " << c.text;
+}
+
+// A misspelt key is named before the problems it causes: "fiel" leaves "file" missing, and the
+// message is about "fiel".
+TEST(SceneJsonKeys, MisspeltKeyInsideDensityTexture) {
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"fiel": "noise.vdb"}}]})"),
+              "scene.json: volumes[0].density_texture.fiel: unknown key (did you mean \"file\"?); allowed in "
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength");
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"file": "n.vdb", "strenght": 2}}]})"),
+              "scene.json: volumes[0].density_texture.strenght: unknown key (did you mean \"strength\"?); allowed in "
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength");
+    // Without the typo the missing file is what is wrong.
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"grid": "density"}}]})"),
+              "scene.json: volumes[0].density_texture.file: missing required key (the OpenVDB file of the texture)");
+}
+
+// Every key written in a shipped scene is read: the strict reader accepts the file, and each of the
+// file's values comes back, at the same JSON path, in what the writer makes of the scene it read.
+void expectEveryLeafIn(const nlohmann::json& file, const nlohmann::json& written, const std::string& path,
+                       const std::string& scene) {
+    if (file.is_object()) {
+        for (const auto& item : file.items()) {
+            const std::string p = path.empty() ? item.key() : path + "." + item.key();
+            ASSERT_TRUE(written.is_object() && written.contains(item.key())) << scene << ": " << p << " was not read";
+            expectEveryLeafIn(item.value(), written[item.key()], p, scene);
+        }
+    } else if (path.ends_with("direction")) {
+        EXPECT_TRUE(written.is_array()) << scene << ": " << path;  // directions are normalized on load
+    } else if (file.is_array() && !file.empty() && (file[0].is_object() || file[0].is_array())) {
+        ASSERT_TRUE(written.is_array() && written.size() == file.size()) << scene << ": " << path;
+        for (size_t i = 0; i < file.size(); ++i)
+            expectEveryLeafIn(file[i], written[i], path + "[" + std::to_string(i) + "]", scene);
+    } else if (file.is_number()) {
+        EXPECT_TRUE(written.is_number()) << scene << ": " << path;
+        if (written.is_number()) {
+            EXPECT_FLOAT_EQ(static_cast<float>(file.get<double>()), static_cast<float>(written.get<double>()))
+                << scene << ": " << path;
+        }
+    } else if (file.is_array()) {
+        ASSERT_TRUE(written.is_array() && written.size() == file.size()) << scene << ": " << path;
+        for (size_t i = 0; i < file.size(); ++i)
+            expectEveryLeafIn(file[i], written[i], path + "[" + std::to_string(i) + "]", scene);
+    } else {
+        EXPECT_EQ(file, written) << scene << ": " << path;
+    }
+}
+
+TEST(SceneJsonKeys, EveryKeyOfEveryShippedSceneIsRead) {
+    int scenes = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(fs::path(BRUME_SOURCE_DIR) / "assets" / "scenes")) {
+        if (e.path().extension() != ".json") continue;
+        ++scenes;
+        const std::string text = readAll(e.path());
+        Result<Scene> r = parseScene(text, e.path().string());
+        ASSERT_TRUE(r) << r.error().message;
+        const nlohmann::json file = nlohmann::json::parse(text);
+        const nlohmann::json written = nlohmann::json::parse(sceneToJson(r.value()));
+        expectEveryLeafIn(file, written, "", e.path().filename().string());
+    }
+    EXPECT_GE(scenes, 6);
+}
+
+}  // namespace
+}  // namespace brume
+
+// Keyframes in the scene format: read, written back unchanged, and every bad input one sentence
+// naming its JSON path.
+namespace brume {
+namespace {
+
+constexpr const char* kKeyed = R"({"brume_scene": 1,
+  "lights": [{"type": "spot", "keys": {"intensity": [{"time": 0, "value": 5}, {"time": 2.5, "value": 50}],
+                                       "direction": {"interpolation": "smooth", "keys": [{"time": 1, "value": [0, -1, 0]}]}}}],
+  "volumes": [{"type": "box", "density_texture": {"file": "n.vdb"},
+               "keys": {"medium.scattering": [{"time": 0, "value": [0.1, 0.2, 0.3]}, {"time": 2.5, "value": [1, 1, 1]}],
+                        "transform.translation": {"interpolation": "smooth", "keys": [{"time": -1, "value": [0, 0, 0]},
+                                                  {"time": 0, "value": [1, 0, 0]}, {"time": 4, "value": [1, 2, 0]}]},
+                        "density_texture.strength": [{"time": 3, "value": 2}]}}]})";
+
+TEST(SceneJsonKeyframes, ReadAndWrittenLosslessly) {
+    Result<Scene> r = parseScene(kKeyed, "k.json");
+    ASSERT_TRUE(r) << r.error().message;
+    const Scene& s = r.value();
+    ASSERT_EQ(s.volumes[0].keys.size(), 3u);
+    const KeyTrack& scat = s.volumes[0].keys[1];  // targets come in key order
+    EXPECT_EQ(scat.target, "medium.scattering");
+    EXPECT_EQ(scat.interpolation, Interpolation::Linear);
+    ASSERT_EQ(scat.keys.size(), 2u);
+    EXPECT_EQ(scat.keys[1].time, 2.5f);
+    EXPECT_EQ(scat.keys[0].value, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(s.volumes[0].keys[2].interpolation, Interpolation::Smooth);
+    ASSERT_EQ(s.lights[0].keys.size(), 2u);
+    EXPECT_EQ(s.lights[0].keys[1].target, "intensity");
+    EXPECT_EQ(s.lights[0].keys[1].keys[1].value.x, 50.0f);
+    Result<Scene> again = parseScene(sceneToJson(s), "k2.json");
+    ASSERT_TRUE(again) << again.error().message;
+    EXPECT_EQ(again.value(), s);
+}
+
+TEST(SceneJsonKeyframes, BadKeysNameTheirPath) {
+    const ErrorCase cases[] = {
+        {R"({"brume_scene": 1, "volumes": [{"type": "box", "keys": {"medium.scattering": [{"time": 2, "value": [0, 0, 0]}, {"time": 1, "value": [1, 1, 1]}]}}]})",
+         "scene.json: volumes[0].keys.medium.scattering[1].time: 1 s is not after the previous key's time (2 s); a list's keys "
+         "must be in increasing time"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "box", "keys": {"medium.scatering": [{"time": 0, "value": [0, 0, 0]}]}}]})",
+         "scene.json: volumes[0].keys.medium.scatering: not a keyable setting of a box volume (did you mean "
+         "\"medium.scattering\"?); keyable: edge_fade, transform.translation, transform.rotation_deg, transform.scale, "
+         "medium.scattering, medium.absorption, medium.emission, medium.phase_g"},
+        {R"({"brume_scene": 1, "volumes": [{"type": "height", "keys": {"density_texture.strength": [{"time": 0, "value": 1}]}}]})",
+         "scene.json: volumes[0].keys.density_texture.strength: not a keyable setting of a height volume; keyable: "
+         "base_height, falloff, transition_height, medium.scattering, medium.absorption, medium.emission, medium.phase_g"},
+        {R"({"brume_scene": 1, "lights": [{"type": "directional", "keys": {"position": [{"time": 0, "value": [0, 0, 0]}]}}]})",
+         "scene.json: lights[0].keys.position: not a keyable setting of a directional light; keyable: direction, color, "
+         "intensity, fog_scale"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"intensity": [{"time": 0, "value": -1}]}}]})",
+         "scene.json: lights[0].keys.intensity[0].value: -1 W/sr is out of range [0, 1e+06] W/sr"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"color": [{"time": 0, "value": 1}]}}]})",
+         "scene.json: lights[0].keys.color[0].value: expected an array of 3 numbers, got 1"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"range": []}}]})",
+         "scene.json: lights[0].keys.range: expected an array of at least one key {\"time\": s, \"value\": v}, got an array of 0 values"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"range": [{"value": 3}]}}]})",
+         "scene.json: lights[0].keys.range[0].time: missing required key (the key's scene time in s)"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"range": [{"time": 0, "value": 3, "ease": 1}]}}]})",
+         "scene.json: lights[0].keys.range[0].ease: unknown key; allowed in a key: time, value"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"range": {"interpolation": "cubic", "keys": [{"time": 0, "value": 3}]}}}]})",
+         "scene.json: lights[0].keys.range.interpolation: unknown choice \"cubic\"; choices: linear, smooth"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"range": {"interpolation": "smooth"}}}]})",
+         "scene.json: lights[0].keys.range.keys: missing required key (the list of keys {\"time\": s, \"value\": v})"},
+        {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": [1]}]})",
+         "scene.json: lights[0].keys: expected an object, got an array of 1 values"},
+    };
+    for (const ErrorCase& c : cases) EXPECT_EQ(parseError(c.text), c.message) << "input: " << c.text;
 }
 
 }  // namespace
