@@ -25,21 +25,9 @@ constexpr VkImageUsageFlags kVolumeUsage =
 void transition(VkCommandBuffer cmd, const std::vector<VkImage>& images, VkImageLayout from, VkImageLayout to,
                 VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
                 VkAccessFlags dstAccess) {
-    if (images.empty()) return;
-    std::vector<VkImageMemoryBarrier> barriers;
-    for (VkImage img : images) {
-        VkImageMemoryBarrier b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-        b.srcAccessMask = srcAccess;
-        b.dstAccessMask = dstAccess;
-        b.oldLayout = from;
-        b.newLayout = to;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = img;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        barriers.push_back(b);
-    }
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, static_cast<uint32_t>(barriers.size()),
-                         barriers.data());
+    std::vector<LayoutChange> changes;
+    for (VkImage img : images) changes.push_back({img, from, to});
+    layoutBarrier(cmd, changes, srcStage, srcAccess, dstStage, dstAccess);
 }
 
 void copyImageToBuffer(VkCommandBuffer cmd, const GpuImage& img, const Buffer& buf) {

@@ -1,38 +1,13 @@
 // Temporal pass (shaders/temporal.comp; rule in shaders/shared/temporal.h; reads and writes in
 // frame_table.cpp): the resolved history *_OUT is copied over sourceImage and mediaExtinction for the
 // integrate pass.
-#include <initializer_list>
-#include <utility>
-#include <vector>
+#include <array>
 
 #include "passes.h"
 #include "shaders/shared/brume.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
-
-namespace {
-
-void relayout(VkCommandBuffer cmd, std::initializer_list<std::pair<VkImage, std::pair<VkImageLayout, VkImageLayout>>> images,
-              VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
-              VkAccessFlags dstAccess) {
-    std::vector<VkImageMemoryBarrier> barriers;
-    for (const auto& [image, layouts] : images) {
-        VkImageMemoryBarrier b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-        b.srcAccessMask = srcAccess;
-        b.dstAccessMask = dstAccess;
-        b.oldLayout = layouts.first;
-        b.newLayout = layouts.second;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = image;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        barriers.push_back(b);
-    }
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, static_cast<uint32_t>(barriers.size()),
-                         barriers.data());
-}
-
-}  // namespace
 
 // One invocation per froxel, then the resolved pair replaces this frame's source and extinction
 // (copied in transfer layouts, then every image is back in GENERAL for the passes after).
@@ -47,18 +22,18 @@ void recordTemporal(const PassContext& ctx) {
     constexpr VkImageLayout G = VK_IMAGE_LAYOUT_GENERAL, SRC = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                             DST = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     // The dispatch wrote the history (read by the copy) and read source/extinction (overwritten by it).
-    relayout(cmd, {{outS, {G, SRC}}, {outE, {G, SRC}}, {source, {G, DST}}, {extinction, {G, DST}}},
-             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-             VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+    const std::array<LayoutChange, 4> toCopy{{{outS, G, SRC}, {outE, G, SRC}, {source, G, DST}, {extinction, G, DST}}};
+    layoutBarrier(cmd, toCopy, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
     VkImageCopy region{};
     region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.dstSubresource = region.srcSubresource;
     region.extent = outSource.extent;
     vkCmdCopyImage(cmd, outS, SRC, source, DST, 1, &region);
     vkCmdCopyImage(cmd, outE, SRC, extinction, DST, 1, &region);
-    relayout(cmd, {{outS, {SRC, G}}, {outE, {SRC, G}}, {source, {DST, G}}, {extinction, {DST, G}}},
-             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
-             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    const std::array<LayoutChange, 4> back{{{outS, SRC, G}, {outE, SRC, G}, {source, DST, G}, {extinction, DST, G}}};
+    layoutBarrier(cmd, back, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 }  // namespace brume::gpu

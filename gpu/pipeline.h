@@ -57,6 +57,14 @@ private:
 
 void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings);
 
+// One barrier moving each image from one layout to another (whole image, colour aspect).
+struct LayoutChange {
+    VkImage image;
+    VkImageLayout from, to;
+};
+void layoutBarrier(VkCommandBuffer cmd, std::span<const LayoutChange> images, VkPipelineStageFlags srcStage,
+                   VkAccessFlags srcAccess, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
+
 // Global memory barrier: writes `srcAccess` by `src` stages before it become visible to `dstAccess`
 // by `dst` stages after it.
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
