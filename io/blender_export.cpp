@@ -338,6 +338,10 @@ def volume_material(v):
         link(nt, math_node(nt, "MULTIPLY", f, v["density"]), pv.inputs["Density"])
         link(nt, math_node(nt, "MULTIPLY", f, v["emission_strength"]), pv.inputs["Emission Strength"])
     link(nt, pv.outputs["Volume"], out.inputs["Volume"])
+    if v["kind"] not in ("box", "vdb"):
+        # Cycles steps through a mesh volume in proportion to its size: the cube of unbounded fog is
+        # large, so its steps are cut to what a 60 m cube takes at rate 0.2 (height fog 4.3% -> 2.0%).
+        mat.cycles.volume_step_rate = min(1.0, 12.0 / (2.0 * DATA["extent"]))
     return mat
 
 
