@@ -6,10 +6,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bake_command.h"
 #include "bench_command.h"
 #include "command.h"
+#include "export_command.h"
 #include "info_commands.h"
 #include "noise_command.h"
+#include "preset_command.h"
 #include "render_command.h"
 #include "vdb_command.h"
 
@@ -50,10 +53,16 @@ int run(int argc, char** argv) {
     CLI::App* infoCmd = addInfoCommand(app, info);
     NoiseOptions noise;
     CLI::App* noiseCmd = addNoiseCommand(app, noise);
+    PresetOptions preset;
+    ExportOptions exportOptions;
+    BakeCommandOptions bake;
+    CLI::App* bakeCmd = addBakeCommand(app, bake);
+    CLI::App* exportCmd = addExportCommand(app, exportOptions);
+    const PresetCommands presetCmds = addPresetCommand(app, preset);
     // CLI11 would answer both with "A subcommand is required"; say what is expected instead.
-    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, info or noise (see brume --help)."));
+    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, info, noise, preset, export or bake (see brume --help)."));
     if (argv[1][0] != '-' && !hasSubcommand(app, argv[1])) {
-        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, info or noise."));
+        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, info, noise, preset, export or bake."));
     }
     try {
         app.parse(argc, argv);
@@ -69,7 +78,10 @@ int run(int argc, char** argv) {
     if (*benchCmd) return finish(runBench(bench));
     if (*infoCmd) return finish(runInfo(info));
     if (*noiseCmd) return finish(runNoise(noise));
-    return finish(badInput("no command given; expected render, validate, settings, bench, info or noise (see brume --help)."));
+    if (*presetCmds.preset) return finish(runPreset(presetCmds, preset));
+    if (*exportCmd) return finish(runExport(exportOptions));
+    if (*bakeCmd) return finish(runBake(bake));
+    return finish(badInput("no command given; expected render, validate, settings, bench, info, noise, preset, export or bake (see brume --help)."));
 }
 
 }  // namespace

@@ -148,6 +148,16 @@ inline constexpr Setting noise_octaves    {"--octaves", K::Integer, "", 1, 8, {4
 inline constexpr Setting noise_frequency  {"--frequency", K::Integer, "cells/tile", 1, 64, {4}, "", "Noise lattice cells per tile side in the first octave (an integer, so the tile is periodic)."};
 inline constexpr Setting noise_seed       {"--seed", K::Integer, "", 0, 999999, {1}, "", "Random seed: the same seed gives the same noise, another seed other noise."};
 inline constexpr Setting noise_grid       {"--grid", K::String, "", 0, 0, {0}, "", "Name of the grid written (the density_texture's grid key)."};
+// Preset files (io/preset.h, docs/presets.md): their keys besides the scene's ambient, lights and volumes.
+inline constexpr Setting preset_name      {"name", K::String, "", 0, 0, {0}, "", "Name of the look shown in preset lists and the editor; required, not empty."};
+inline constexpr Setting preset_description {"description", K::String, "", 0, 0, {0}, "", "One or two sentences on the look (default: empty)."};
+inline constexpr Setting preset_tags      {"tags", K::String, "", 0, 0, {0}, "", "Array of short words to filter by (default: none)."};
+// brume preset options.
+inline constexpr Setting cli_thumbnail_width  {"--thumbnail-width", K::Integer, "px", 16, 1024, {160}, "", "Width of the thumbnail PNG written beside the preset."};
+inline constexpr Setting cli_thumbnail_height {"--thumbnail-height", K::Integer, "px", 9, 1024, {90}, "", "Height of the thumbnail PNG written beside the preset."};
+// brume bake options.
+inline constexpr Setting cli_voxel_size   {"--voxel-size", K::Number, "m", 1e-4, 1e4, {0.1}, "", "Edge of a baked voxel; voxel (i, j, k) is centred at (i, j, k) x voxel size in world space. Required."};
+inline constexpr Setting cli_bounds       {"--bounds", K::Number, "m", -kBig, kBig, {0}, "", "World box XMIN YMIN ZMIN XMAX YMAX ZMAX the bake is clipped to; required when a height or depth fog (unbounded) is baked."};
 inline constexpr Setting cli_threads      {"--threads", K::Integer, "", 0, 1024, {0}, "", "CPU worker threads; 0 = every core."};
 // clang-format on
 

@@ -1036,3 +1036,67 @@ std::string settingsMarkdownTable() {
 }
 
 }  // namespace brume
+
+// ---------------------------------------------------------------------------------------------
+// Pieces shared with other formats built on scenes (io/scene_json_parts.h): thin wrappers, so that
+// those formats read and write volumes and lights exactly as scenes do.
+
+namespace brume::scene_json {
+
+Result<nlohmann::json> parseStrictJson(std::string_view text, const std::string& file) {
+    Ctx c{file, std::nullopt};
+    std::optional<json> root = parseJson(c, text);
+    if (!root) return *c.error;
+    return std::move(*root);
+}
+
+Result<std::vector<Light>> readLights(const nlohmann::json& value, const std::string& file, const std::string& path) {
+    Ctx c{file, std::nullopt};
+    std::vector<Light> out;
+    readList(c, value, path, out, readLight);
+    if (c.error) return *c.error;
+    return out;
+}
+
+Result<std::vector<Volume>> readVolumes(const nlohmann::json& value, const std::string& file, const std::string& path) {
+    Ctx c{file, std::nullopt};
+    std::vector<Volume> out;
+    readList(c, value, path, out, readVolume);
+    checkOneEncoding(c, out);
+    if (c.error) return *c.error;
+    return out;
+}
+
+Result<glm::vec3> readAmbient(const nlohmann::json& object, const std::string& file, glm::vec3 fallback) {
+    Ctx c{file, std::nullopt};
+    glm::vec3 out = fallback;
+    readVec3(c, object, "", st::ambient, out);
+    if (c.error) return *c.error;
+    return out;
+}
+
+Result<void> checkKeys(const nlohmann::json& object, const std::string& file, const std::string& path,
+                       const std::vector<std::string>& allowed, const std::string& where) {
+    if (!object.is_object()) return Error{file + ": " + (path.empty() ? "" : path + ": ") +
+                                          "expected an object, got " + describe(object)};
+    for (const auto& item : object.items()) {
+        if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
+        return Error{file + ": " + child(path, item.key()) + ": unknown key; allowed in " + where + ": " +
+                     joinList(allowed)};
+    }
+    return {};
+}
+
+nlohmann::ordered_json lightToJson(const Light& light) { return lightJson(light); }
+nlohmann::ordered_json volumeToJson(const Volume& volume) { return volumeJson(volume); }
+nlohmann::ordered_json vec3ToJson(glm::vec3 v) { return vec(v); }
+
+std::string prettyJson(const nlohmann::ordered_json& j) {
+    std::string out;
+    emit(j, 0, out);
+    return out + "\n";
+}
+
+Result<std::string> readTextFile(const std::string& path) { return brume::readTextFile(path); }
+
+}  // namespace brume::scene_json

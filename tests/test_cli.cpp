@@ -200,7 +200,7 @@ TEST_F(Cli, BadArgumentsGiveOneLine) {
     expectOneLineError(brume("render " + scene + " -o out.jpg"), "out.jpg");
     expectOneLineError(brume("render " + scene + " -o no_such_folder/out.png"), "no_such_folder");
     expectOneLineError(brume("frobnicate"), "frobnicate");
-    expectOneLineError(brume(""), "render, validate, settings, bench, info or noise");
+    expectOneLineError(brume(""), "render, validate, settings, bench, info, noise, preset, export or bake");
     expectOneLineError(brume("--threads 2"), "");
     EXPECT_TRUE(listFolder(dir_ / "work").empty()) << "failed commands must leave no file behind";
 }
