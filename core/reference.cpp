@@ -300,6 +300,8 @@ private:
         const glm::vec3 p(ray.origin + ray.dir * tMid);
         for (const shd::VolumeData& v : cs_.volumes) {
             if (!shd::insideBounds(v, p)) continue;
+            // Depth fog is empty before its start distance (a breakpoint): no steps there.
+            if (v.kind.x == shd::VOLUME_DEPTH && tMid < static_cast<double>(v.params.y)) continue;
             if (v.kind.x != shd::VOLUME_BOX || shd::boxDensity(v, p) > 0.0f) return true;
         }
         return false;
@@ -317,12 +319,12 @@ private:
             double h = std::max(std::min(pieceStep, scale * stepLimit(ray, t, sigmaPrev)), minStep);
             if (b - t <= h) h = b - t;
             else if (b - t < 2.0 * h) h = 0.5 * (b - t);
-            shd::MediaSample mid = mediaAt(cs_, position(ray, t + 0.5 * h));
+            shd::MediaSample mid = stepMedia(ray, t, h);
             // The predicted extinction was too low (denser medium ahead): shrink to match.
-            const float sigmaMid = maxComponent(mid.sigmaT);
+            const float sigmaMid = liveSigmaT(mid.sigmaT, acc.transmittance);
             if (static_cast<double>(sigmaMid) * h > 2.0 * tauStep) {
                 h = std::max(tauStep / sigmaMid, minStep);
-                mid = mediaAt(cs_, position(ray, t + 0.5 * h));
+                mid = stepMedia(ray, t, h);
             }
             // A geometry shadow boundary inside the step: the midpoint rule errs by up to the jump
             // times h/2 there, so such steps are split into shadow_substeps.
@@ -333,7 +335,7 @@ private:
                 const int sub = params_.shadow_substeps;
                 for (int i = 0; i < sub; ++i) {
                     const double ti = t + h * i / sub;
-                    sigmaPrev = addStep(ray, ti, h / sub, mediaAt(cs_, position(ray, ti + 0.5 * h / sub)), acc);
+                    sigmaPrev = addStep(ray, ti, h / sub, stepMedia(ray, ti, h / sub), acc);
                 }
             }
             maskStart = maskEnd;
@@ -346,15 +348,55 @@ private:
 
     static glm::vec3 position(const CameraRay& ray, double t) { return glm::vec3(ray.origin + ray.dir * t); }
 
-    // Midpoint-rule step [t, t + h] with the exact slab formula; returns the step's max sigma_t.
-    // m: the media at the midpoint.
+    // Midpoint-rule step [t, t + h] with the exact slab formula; returns the step's sigma_t limit
+    // (liveSigmaT). m: the step's media (stepMedia).
     float addStep(const CameraRay& ray, double t, double h, const shd::MediaSample& m, shd::Accumulated& acc) const {
         const glm::vec3 p = position(ray, t + 0.5 * h);
         const glm::vec3 light = m.sigmaS == glm::vec3(0.0f) ? glm::vec3(0.0f)
                                                             : inScatter(p, glm::vec3(ray.dir), shd::mediaPhaseG(m));
         const glm::vec3 source = m.sigmaS * (light + cs_.ambient) + m.emission;
         acc = shd::accumulateSlab(acc, source, m.sigmaT, static_cast<float>(h));
-        return maxComponent(m.sigmaT);
+        return liveSigmaT(m.sigmaT, acc.transmittance);
+    }
+
+    // The largest sigma_t among the channels that can still be seen (view transmittance above the
+    // cutoff). A channel already put out adds nothing behind it, so its extinction must not hold the
+    // step length down: a medium opaque in red only would otherwise take steps of 0.25 / sigma_t
+    // across its whole length (2^20 steps per pixel at 1e9/m).
+    float liveSigmaT(glm::vec3 sigmaT, glm::vec3 transmittance) const {
+        float s = 0.0f;
+        for (int c = 0; c < 3; ++c)
+            if (transmittance[c] >= params_.transmittance_cutoff) s = std::max(s, sigmaT[c]);
+        return s;
+    }
+
+    // Media of the step [t, t + h]: every volume's density at the midpoint, except depth fog, whose
+    // density along a camera ray (distance from the camera = t) is 1 - exp(-3 (t - start) / vis),
+    // taken as its exact mean over the step (closed form), so steps may grow where it saturates.
+    shd::MediaSample stepMedia(const CameraRay& ray, double t, double h) const {
+        const glm::vec3 p = position(ray, t + 0.5 * h);
+        shd::MediaSample m = shd::emptyMedia();
+        for (size_t i = 0; i < cs_.volumes.size(); ++i) {
+            const shd::VolumeData& v = cs_.volumes[i];
+            if (!shd::insideBounds(v, p)) continue;
+            if (v.kind.x == shd::VOLUME_DEPTH) {
+                const float mean = static_cast<float>(depthMean(v, t, t + h));
+                m = shd::addMedium(m, v, mean > 0.0f ? mean * densityTextureFactor(cs_, i, p) : 0.0f);
+            } else {
+                m = shd::addMedium(m, v, volumeDensity(cs_, i, p));
+            }
+        }
+        return m;
+    }
+
+    // Mean of the depth fog density over camera-ray distances [t0, t1].
+    static double depthMean(const shd::VolumeData& v, double t0, double t1) {
+        const double start = static_cast<double>(v.params.y), k = 3.0 / static_cast<double>(v.params.x);
+        const double a = std::max(t0 - start, 0.0), b = std::max(t1 - start, 0.0);
+        if (!(t1 > t0) || !(b > a)) return 0.0;
+        // Integral of 1 - exp(-k x) over [a, b], without cancellation.
+        const double integral = (b - a) + std::exp(-k * a) * std::expm1(-k * (b - a)) / k;
+        return std::clamp(integral / (t1 - t0), 0.0, 1.0);
     }
 
     // Bit i: light i (of the first 32) lights fog, casts shadows and is occluded by geometry at p.
@@ -398,7 +440,15 @@ private:
     double densityScale(const shd::VolumeData& v, const CameraRay& ray, glm::vec3 p) const {
         if (v.kind.x == shd::VOLUME_HEIGHT_EXPONENTIAL && p.y > v.params.x && v.params.y > 0.0f)
             return 1.0 / (static_cast<double>(v.params.y) * std::max(std::abs(ray.dir.y), 1e-30));
-        if (v.kind.x == shd::VOLUME_DEPTH) return static_cast<double>(v.params.x) / 3.0;
+        if (v.kind.x == shd::VOLUME_DEPTH) {
+            // The length over which the density changes by about 1 (vis/3 at the start), growing as
+            // the density saturates: the steps through the ramp stay few (about 1/density_step),
+            // whatever the visibility distance, and none are spent where the density is constant.
+            const double vis = static_cast<double>(v.params.x);
+            const double x = static_cast<double>(glm::length(p - cs_.cameraPosition) - v.params.y);
+            if (x < 0.0) return kInf;  // before the start: no density
+            return vis / 3.0 * std::exp(std::min(3.0 * x / vis, 700.0));
+        }
         // Trilinear density changes over a voxel: a voxel edge is its scale (density_step of it per step).
         if (v.kind.x == shd::VOLUME_VDB) return static_cast<double>(v.params.y);
         if (v.kind.x == shd::VOLUME_BOX && hasFade(v)) {

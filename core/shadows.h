@@ -13,8 +13,8 @@
 namespace brume {
 
 // Whether the froxel renderers evaluate fog transmittance toward point and spot lights at this
-// quality (FrameUniforms.shadows.x); the sun's is always evaluated. Off in low: it costs one
-// closed form per volume per local light per froxel.
+// quality (FrameUniforms.shadows.x); the sun's is always evaluated. On at every quality today (a
+// light must not shine through fog it cannot cross); kept as a switch for measurements.
 bool localLightFogShadows(Quality q);
 
 // exp(-optical depth) from p along unit toLight over `distance` (BRUME_HUGE for a directional

@@ -37,6 +37,11 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr int kProgressFd = 3;
+// With OUT "-", the reader writes the grid on descriptor 4 and result.json on 5: memory files the
+// parent made (memfd_create), so nothing lands on disk and nothing is left behind by Ctrl-C or kill.
+constexpr int kGridFd = 4;
+constexpr int kResultFd = 5;
+constexpr const char* kToDescriptors = "-";
 constexpr const char* kReaderName = "brume-vdb-read";
 
 // ---- wire format: VdbGridInfo <-> JSON ----
@@ -89,9 +94,25 @@ bool writeFile(const fs::path& path, const void* data, size_t size) {
     return static_cast<bool>(out.flush());
 }
 
-// Last, by rename: the parent never sees half a result.
+bool writeAll(int fd, const void* data, size_t size) {
+    const char* p = static_cast<const char*>(data);
+    while (size > 0) {
+        const ssize_t n = write(fd, p, size);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        p += n;
+        size -= static_cast<size_t>(n);
+    }
+    return true;
+}
+
+bool toDescriptors(const fs::path& dir) { return dir == kToDescriptors; }
+
+// Last, by rename (or, to a descriptor, read by the parent only after a clean exit): the parent
+// never sees half a result.
 bool writeResult(const fs::path& dir, const json& j) {
     const std::string text = j.dump();
+    if (toDescriptors(dir)) return writeAll(kResultFd, text.data(), text.size());
     return writeFile(dir / "result.json.tmp", text.data(), text.size()) &&
            std::rename((dir / "result.json.tmp").c_str(), (dir / "result.json").c_str()) == 0;
 }
@@ -111,9 +132,25 @@ std::function<void(float)> progressWriter() {
 // declare (3x: the grid, its float copy, its NanoVDB), never above 3x the user's memory cap.
 constexpr uint64_t kBaseBytes = uint64_t(512) << 20;
 
+#if defined(__SANITIZE_ADDRESS__)
+#define BRUME_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define BRUME_ASAN 1
+#endif
+#endif
+
 void setDataLimit(uint64_t soft, uint64_t hard) {
+#ifdef BRUME_ASAN
+    // AddressSanitizer maps terabytes of shadow memory as private data before main(): under any data
+    // limit its next allocation fails. Sanitized builds (scripts/test --sanitize, scripts/fuzz) rely
+    // on the metadata cap alone.
+    (void)soft;
+    (void)hard;
+#else
     const rlimit r{std::min(soft, hard), hard};
     setrlimit(RLIMIT_DATA, &r);
+#endif
 }
 
 VdbImportOptions cappedOptions(uint64_t memoryLimitBytes) {
@@ -137,8 +174,10 @@ json runLoad(const std::string& file, const std::string& grid, uint64_t limit, c
     if (!r) return {{"ok", false}, {"error", r.error().message}};
     const DensityGrid& g = *r.value().grid;
     // The NanoVDB grid alone: the parent builds the occupancy cells that DensityGrid appends again.
-    if (!writeFile(dir / "grid.nvdb", g.data(), g.nanoVdbSize()))
-        return {{"ok", false}, {"error", file + ": cannot write the converted grid to " + dir.string() + "."}};
+    const bool written = toDescriptors(dir) ? writeAll(kGridFd, g.data(), g.nanoVdbSize())
+                                            : writeFile(dir / "grid.nvdb", g.data(), g.nanoVdbSize());
+    if (!written)
+        return {{"ok", false}, {"error", file + ": cannot hand the converted grid to Brume (out of memory or disk)."}};
     return {{"ok", true}, {"grid_name", r.value().gridName}, {"warnings", r.value().warnings}};
 }
 
@@ -176,24 +215,47 @@ int vdbReaderMain(int argc, char** argv) {
 
 namespace {
 
-// A private folder for one read's result, removed with everything in it.
-class TempDir {
+// The reader's two outputs as anonymous memory files (memfd_create): no name on any disk, so a
+// Ctrl-C or a kill of Brume at any moment leaves nothing behind (a temp folder did: brume-vdb-*).
+class MemoryFiles {
 public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "brume-vdb-XXXXXX").string();
-        if (mkdtemp(pattern.data())) path_ = pattern;
+    MemoryFiles() : grid_(memfd_create("brume-vdb-grid", MFD_CLOEXEC)), result_(memfd_create("brume-vdb-result", MFD_CLOEXEC)) {}
+    ~MemoryFiles() {
+        if (grid_ >= 0) close(grid_);
+        if (result_ >= 0) close(result_);
     }
-    ~TempDir() {
-        std::error_code ec;
-        if (!path_.empty()) fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
+    MemoryFiles(const MemoryFiles&) = delete;
+    MemoryFiles& operator=(const MemoryFiles&) = delete;
+    bool ok() const { return grid_ >= 0 && result_ >= 0; }
+    int grid() const { return grid_; }
+    int result() const { return result_; }
 
 private:
-    fs::path path_;
+    int grid_, result_;
 };
+
+// The whole content of a memory file ("" when unreadable).
+std::string readAll(int fd) {
+    std::string text;
+    char buf[4096];
+    for (off_t at = 0;;) {
+        const ssize_t n = pread(fd, buf, sizeof buf, at);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        text.append(buf, static_cast<size_t>(n));
+        at += n;
+    }
+    return text;
+}
+
+// Makes `fd` descriptor `target` (3 to 5) in the child. The source is first copied above them (fd 10
+// and up, close-on-exec), so that no dup2 of the chain overwrites another's source and none is onto
+// itself (which would keep close-on-exec). Returns that copy, to close after the spawn.
+int addDup(posix_spawn_file_actions_t& actions, int fd, int target) {
+    const int moved = fcntl(fd, F_DUPFD_CLOEXEC, 10);
+    posix_spawn_file_actions_adddup2(&actions, moved, target);
+    return moved;
+}
 
 // Beside the running executable (brume, brume-editor); else the build tree's, for the tests.
 fs::path findReader() {
@@ -222,7 +284,7 @@ bool forwardProgress(int fd, std::string& pending, const VdbImportOptions& optio
 }
 
 // Runs the reader to the end; returns its result.json, or the error sentence.
-Result<json> runReader(const std::string& file, std::vector<std::string> args, const fs::path& dir,
+Result<json> runReader(const std::string& file, std::vector<std::string> args, const MemoryFiles& out,
                        const VdbImportOptions& options) {
     const fs::path reader = findReader();
     if (reader.empty())
@@ -239,15 +301,14 @@ Result<json> runReader(const std::string& file, std::vector<std::string> args, c
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);  // OpenVDB's own chatter
-    // dup2 onto another number clears close-on-exec; onto itself it would not, so move it first.
-    int writeEnd = fds[1];
-    if (writeEnd == kProgressFd) writeEnd = fcntl(fds[1], F_DUPFD_CLOEXEC, kProgressFd + 1);
-    posix_spawn_file_actions_adddup2(&actions, writeEnd, kProgressFd);
+    const int moved[3] = {addDup(actions, fds[1], kProgressFd), addDup(actions, out.grid(), kGridFd),
+                          addDup(actions, out.result(), kResultFd)};
     pid_t pid = 0;
     const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     close(fds[1]);
-    if (writeEnd != fds[1]) close(writeEnd);
+    for (int fd : moved)
+        if (fd >= 0) close(fd);
     if (spawned != 0) {
         close(fds[0]);
         return Error{file + ": cannot start the OpenVDB reader " + reader.string() + " (" + std::strerror(spawned) + ")."};
@@ -282,8 +343,7 @@ Result<json> runReader(const std::string& file, std::vector<std::string> args, c
     }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return Error{crashed(file)};
     try {
-        std::ifstream in(dir / "result.json");
-        json result = json::parse(in);
+        json result = json::parse(readAll(out.result()));
         if (!result.at("ok").get<bool>()) return Error{result.at("error").get<std::string>()};
         return result;
     } catch (const std::exception&) {
@@ -292,14 +352,11 @@ Result<json> runReader(const std::string& file, std::vector<std::string> args, c
 }
 
 // The reader's NanoVDB grid, mapped and checked (a float grid of exactly the file's size) before use.
-Result<DensityGridPtr> mapGrid(const std::string& file, const fs::path& nvdb) {
+Result<DensityGridPtr> mapGrid(const std::string& file, int fd) {
     const std::string bad = file + ": the OpenVDB reader returned an unreadable grid.";
-    const int fd = open(nvdb.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return Error{bad};
     struct stat st {};
     const size_t size = fstat(fd, &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
     void* bytes = size >= sizeof(nanovdb::GridData) ? mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : MAP_FAILED;
-    close(fd);
     if (bytes == MAP_FAILED) return Error{bad};
     const auto* grid = static_cast<const nanovdb::GridData*>(bytes);
     const bool ok = grid->mMagic == NANOVDB_MAGIC_NUMBER && grid->mGridSize == size &&
@@ -313,12 +370,12 @@ Result<DensityGridPtr> mapGrid(const std::string& file, const fs::path& nvdb) {
 }  // namespace
 
 Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& options) {
-    TempDir dir;
-    if (dir.path().empty()) return Error{path + ": cannot create a temporary folder for reading it."};
+    const MemoryFiles out;
+    if (!out.ok()) return Error{path + ": cannot read it: no memory for the reader's output."};
     Result<json> r = runReader(path, {"load", path, options.grid, std::to_string(options.memoryLimitBytes),
-                                      dir.path().string()}, dir.path(), options);
+                                      kToDescriptors}, out, options);
     if (!r) return r.error();
-    Result<DensityGridPtr> grid = mapGrid(path, dir.path() / "grid.nvdb");
+    Result<DensityGridPtr> grid = mapGrid(path, out.grid());
     if (!grid) return grid.error();
     grid = encodeDensityGrid(grid.value(), options.encoding, path);
     if (!grid) return grid.error();
@@ -334,10 +391,10 @@ Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& 
 }
 
 Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path, const VdbImportOptions& options) {
-    TempDir dir;
-    if (dir.path().empty()) return Error{path + ": cannot create a temporary folder for reading it."};
-    Result<json> r = runReader(path, {"info", path, std::to_string(options.memoryLimitBytes), dir.path().string()},
-                               dir.path(), options);
+    const MemoryFiles out;
+    if (!out.ok()) return Error{path + ": cannot read it: no memory for the reader's output."};
+    Result<json> r = runReader(path, {"info", path, std::to_string(options.memoryLimitBytes), kToDescriptors}, out,
+                               options);
     if (!r) return r.error();
     std::vector<VdbGridInfo> grids;
     try {

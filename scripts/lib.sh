@@ -3,6 +3,7 @@
 
 BRUME_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BRUME_BUILD="${BRUME_BUILD_DIR:-$BRUME_ROOT/build}"
+BRUME_SANITIZE_BUILD="${BRUME_SANITIZE_BUILD_DIR:-$BRUME_ROOT/build-sanitize}"
 
 BRUME_PACKAGES=(
   cmake g++ pkg-config ccache
@@ -12,6 +13,7 @@ BRUME_PACKAGES=(
   libgtest-dev libbenchmark-dev
   xvfb xauth xdotool
   slurm-wlm  # tests/slurm_farm.sh: a one-node Slurm on localhost (32 s to install, daemons up in 1 s)
+  clang libclang-rt-14-dev
 )
 
 brume_missing_packages() {
@@ -47,4 +49,16 @@ brume_build() {
   fi
   cmake -S "$BRUME_ROOT" -B "$BRUME_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}"
   cmake --build "$BRUME_BUILD" -j"$(nproc)"
+}
+
+# ASan + UBSan (BRUME_SANITIZE), without the GPU renderer, the editor window and the benchmarks:
+# what scripts/test --sanitize runs. ccache is used when present (CI machines keep its cache).
+brume_build_sanitized() {
+  local launcher=()
+  if command -v ccache >/dev/null; then
+    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  fi
+  cmake -S "$BRUME_ROOT" -B "$BRUME_SANITIZE_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBRUME_SANITIZE=ON \
+    -DBRUME_BUILD_GPU=OFF -DBRUME_BUILD_BENCH=OFF "${launcher[@]}"
+  cmake --build "$BRUME_SANITIZE_BUILD" -j"$(nproc)"
 }

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "io/vdb_import.h"
+#include "test_support.h"
 #include "vdb_test_util.h"
 
 using namespace brume;
@@ -229,4 +230,31 @@ TEST_F(VdbRobust, ProgressIsReportedForLargeFiles) {
     EXPECT_NE(readBytes((dir_ / "out.txt").string()).find("1259712 active voxels"), std::string::npos);
     EXPECT_NE(readBytes((dir_ / "err.txt").string()).find("reading noise.vdb 100%"), std::string::npos)
         << readBytes((dir_ / "err.txt").string());
+}
+
+// Ctrl-C (SIGINT) or kill while the reader runs: nothing of the read may stay on disk. The reader's
+// output once went to a brume-vdb-XXXXXX folder that only the interrupted parent would have removed.
+TEST_F(VdbRobust, InterruptingAReadLeavesNoTempFolder) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> noise(0.1f, 1.0f);
+    auto grid = test::makeGrid("density", 0, 107, [&](openvdb::Coord) { return noise(rng); },
+                               openvdb::math::Transform::createLinearTransform(0.01));
+    test::writeGrids(dir_ / "noise.vdb", {grid});
+    fs::create_directories(dir_ / "tmp");
+    for (const char* sig : {"INT", "TERM", "KILL"}) {
+        // Start brume as its own process group (set -m: as a terminal's foreground job, and SIGINT is
+        // not ignored), wait until its reader child exists, signal the whole group as Ctrl-C does,
+        // then wait for the reader to be gone before looking at the temp folder.
+        const std::string script =
+            "set -m; cd '" + dir_.string() + "' && TMPDIR='" + (dir_ / "tmp").string() + "' '" + BRUME_EXE +
+            "' info noise.vdb >/dev/null 2>&1 & p=$!; c=; for i in $(seq 1000); do c=$(pgrep -P $p); "
+            "[ -n \"$c\" ] && break; sleep 0.005; done; kill -" + sig + " -$p; wait $p; echo \"$c\" > '" +
+            (dir_ / "child.txt").string() + "'; for i in $(seq 1000); do [ -z \"$c\" ] && break; "
+            "kill -0 $c 2>/dev/null || break; sleep 0.01; done";
+        (void)run("bash -c " + test::quoted(script) + " 2>/dev/null");  // bash reports the killed job
+        if (readBytes((dir_ / "child.txt").string()).size() <= 1) {
+            GTEST_SKIP() << "the read finished before the reader could be seen; nothing was interrupted";
+        }
+        EXPECT_EQ(test::fileCount(dir_ / "tmp"), 0u) << "SIG" << sig << " left " << fs::directory_iterator(dir_ / "tmp")->path();
+    }
 }
