@@ -11,6 +11,7 @@
 #include "info_commands.h"
 #include "noise_command.h"
 #include "render_command.h"
+#include "tradeoff_command.h"
 #include "vdb_command.h"
 
 namespace {
@@ -50,10 +51,12 @@ int run(int argc, char** argv) {
     CLI::App* infoCmd = addInfoCommand(app, info);
     NoiseOptions noise;
     CLI::App* noiseCmd = addNoiseCommand(app, noise);
+    TradeoffOptions tradeoff;
+    CLI::App* tradeoffCmd = addTradeoffCommand(app, tradeoff);
     // CLI11 would answer both with "A subcommand is required"; say what is expected instead.
-    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, info or noise (see brume --help)."));
+    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, tradeoff, info or noise (see brume --help)."));
     if (argv[1][0] != '-' && !hasSubcommand(app, argv[1])) {
-        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, info or noise."));
+        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, tradeoff, info or noise."));
     }
     try {
         app.parse(argc, argv);
@@ -69,7 +72,8 @@ int run(int argc, char** argv) {
     if (*benchCmd) return finish(runBench(bench));
     if (*infoCmd) return finish(runInfo(info));
     if (*noiseCmd) return finish(runNoise(noise));
-    return finish(badInput("no command given; expected render, validate, settings, bench, info or noise (see brume --help)."));
+    if (*tradeoffCmd) return finish(runTradeoff(tradeoff));
+    return finish(badInput("no command given; expected render, validate, settings, bench, tradeoff, info or noise (see brume --help)."));
 }
 
 }  // namespace
