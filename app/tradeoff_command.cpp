@@ -36,11 +36,16 @@ uint64_t fnv1a(uint64_t h, std::string_view bytes) {
 }
 
 // The scene's content: its canonical JSON, the image size, the reference's version and the bytes
-// of every file it reads (vdb volumes, density textures).
+// of every file it reads (vdb volumes, density textures). The froxel settings (render block, froxels,
+// temporal) do not reach the reference, so editing them keeps the entry.
 uint64_t referenceKey(const Scene& scene, int width, int height) {
+    Scene content = scene;
+    content.render = Scene().render;
+    content.froxels = FroxelOverrides{};
+    content.temporal = Scene().temporal;
     uint64_t h = 14695981039346656037ull;
     h = fnv1a(h, kReferenceVersion);
-    h = fnv1a(h, sceneToJson(scene));
+    h = fnv1a(h, sceneToJson(content));
     h = fnv1a(h, std::to_string(width) + "x" + std::to_string(height));
     auto addFile = [&](const std::string& file) {
         if (file.empty()) return;
