@@ -14,6 +14,7 @@
 #include "noise_command.h"
 #include "preset_command.h"
 #include "render_command.h"
+#include "tradeoff_command.h"
 #include "vdb_command.h"
 
 namespace {
@@ -56,13 +57,15 @@ int run(int argc, char** argv) {
     PresetOptions preset;
     ExportOptions exportOptions;
     BakeCommandOptions bake;
+    TradeoffOptions tradeoff;
     CLI::App* bakeCmd = addBakeCommand(app, bake);
     CLI::App* exportCmd = addExportCommand(app, exportOptions);
     const PresetCommands presetCmds = addPresetCommand(app, preset);
+    CLI::App* tradeoffCmd = addTradeoffCommand(app, tradeoff);
     // CLI11 would answer both with "A subcommand is required"; say what is expected instead.
-    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, info, noise, preset, export or bake (see brume --help)."));
+    if (argc < 2) return finish(badInput("no command given; expected render, validate, settings, bench, tradeoff, info, noise, preset, export or bake (see brume --help)."));
     if (argv[1][0] != '-' && !hasSubcommand(app, argv[1])) {
-        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, info, noise, preset, export or bake."));
+        return finish(badInput(std::string("unknown command '") + argv[1] + "'; expected render, validate, settings, bench, tradeoff, info, noise, preset, export or bake."));
     }
     try {
         app.parse(argc, argv);
@@ -81,7 +84,8 @@ int run(int argc, char** argv) {
     if (*presetCmds.preset) return finish(runPreset(presetCmds, preset));
     if (*exportCmd) return finish(runExport(exportOptions));
     if (*bakeCmd) return finish(runBake(bake));
-    return finish(badInput("no command given; expected render, validate, settings, bench, info, noise, preset, export or bake (see brume --help)."));
+    if (*tradeoffCmd) return finish(runTradeoff(tradeoff));
+    return finish(badInput("no command given; expected render, validate, settings, bench, tradeoff, info, noise, preset, export or bake (see brume --help)."));
 }
 
 }  // namespace

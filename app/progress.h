@@ -3,6 +3,7 @@
 // short. update() is called from renderer worker threads.
 #pragma once
 
+#include <chrono>
 #include <mutex>
 #include <string>
 
@@ -10,7 +11,8 @@ namespace brume::app {
 
 class ProgressLine {
 public:
-    explicit ProgressLine(std::string label);
+    // eta: also show the time left, extrapolated from the time so far (for work of a minute or more).
+    explicit ProgressLine(std::string label, bool eta = false);
     ProgressLine(const ProgressLine&) = delete;
     ProgressLine& operator=(const ProgressLine&) = delete;
     ~ProgressLine();
@@ -23,10 +25,13 @@ public:
 
 private:
     void show(int percent);
+    std::string etaText(int percent) const;
 
     std::mutex mutex_;
     std::string label_;
     bool terminal_;
+    bool eta_;
+    std::chrono::steady_clock::time_point start_;
     int shown_ = -1;  // last percent printed
     bool ended_ = false;
 };

@@ -193,6 +193,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     applyShadowSettings(frame, request);
     applySunShadowSettings(frame, cs);
     applyVdbShadowSettings(frame, cs, request);
+    setTemporalBlend(frame, history.state, t);
     v = allocateVolumes(frame);
     result.image = Image(request.width, request.height);
 

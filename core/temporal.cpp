@@ -52,19 +52,21 @@ shd::Bounds neighbourhood(const std::vector<vec4>& vol, ivec3 dims, ivec3 c) {
     return b;
 }
 
-void resolveRow(FroxelVolumes& v, const HistoryVolume& in, HistoryVolume& out, const TemporalState& state,
-                const TemporalFrame& t, int y, int s) {
+void resolveRow(FroxelVolumes& v, const HistoryVolume& in, HistoryVolume& out, const TemporalState& state, int y,
+                int s) {
     const ivec3 prevDims(state.frame.froxelDims);
     for (int x = 0; x < v.dims.x; ++x) {
         const ivec3 c(x, y, s);
         const size_t i = indexOf(v.dims, c);
-        const shd::HistoryTaps k = shd::historyTaps(c, v.frame, state.frame, t.useHistory ? t.historyWeight : 0.0f);
+        const shd::HistoryTaps k = shd::historyTaps(c, v.frame, state.frame, v.frame.temporal.x);
+        const bool clampHistory = v.frame.temporal.y == 0.0f;
         const bool read = k.weight > 0.0f;
         const shd::HistorySample histS = read ? readTrilinear(in.source, prevDims, k) : shd::emptyHistorySample();
         const shd::HistorySample histE = read ? readTrilinear(in.extinction, prevDims, k) : shd::emptyHistorySample();
-        out.source[i] = shd::resolveTemporal(v.source[i], histS, neighbourhood(v.source, v.dims, c), k.weight);
-        out.extinction[i] =
-            shd::resolveTemporal(v.mediaExtinction[i], histE, neighbourhood(v.mediaExtinction, v.dims, c), k.weight);
+        out.source[i] =
+            shd::resolveTemporal(v.source[i], histS, neighbourhood(v.source, v.dims, c), k.weight, clampHistory);
+        out.extinction[i] = shd::resolveTemporal(v.mediaExtinction[i], histE, neighbourhood(v.mediaExtinction, v.dims, c),
+                                                 k.weight, clampHistory);
     }
 }
 
@@ -76,6 +78,17 @@ uint64_t temporalSceneKey(const CompiledScene& cs, const Scene& scene, glm::ivec
     h = fnv1a(h, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
     h = fnv1a(h, &cs.ambient, sizeof(cs.ambient));
     h = fnv1a(h, &dims, sizeof(dims));
+    // Geometry shadows the froxels (sun and point/spot shadow maps): a moved box moves its shadow.
+    // Its colours do not reach the froxels, so recolouring keeps the history.
+    for (const Geometry& g : scene.geometry) {
+        if (g.hidden) continue;
+        const float shape[17] = {static_cast<float>(g.type), g.height, g.transform.translation.x,
+                                 g.transform.translation.y, g.transform.translation.z, g.transform.rotation_deg.x,
+                                 g.transform.rotation_deg.y, g.transform.rotation_deg.z, g.transform.scale.x,
+                                 g.transform.scale.y, g.transform.scale.z, g.center.x, g.center.y, g.center.z,
+                                 g.radius, 0.0f, 0.0f};
+        h = fnv1a(h, shape, sizeof(shape));
+    }
     const float settings[2] = {scene.temporal.enabled ? 1.0f : 0.0f, scene.temporal.history_weight};
     return fnv1a(h, settings, sizeof(settings));
 }
@@ -96,8 +109,35 @@ TemporalFrame beginTemporalFrame(TemporalState& state, const Scene& scene, uint6
     return t;
 }
 
+namespace {
+
+bool sameBytes(const void* a, const void* b, size_t n) { return std::memcmp(a, b, n) == 0; }
+
+// Whether `frame` sees the scene exactly as `prev` did (the jitter aside): the same froxels at the
+// same places and the same scene time, so that the history is the same quantity's mean.
+bool viewRests(const shd::FrameUniforms& frame, const shd::FrameUniforms& prev) {
+    return sameBytes(&frame.viewFromWorld, &prev.viewFromWorld, sizeof(frame.viewFromWorld)) &&
+           sameBytes(&frame.clipFromView, &prev.clipFromView, sizeof(frame.clipFromView)) &&
+           sameBytes(&frame.projection, &prev.projection, sizeof(frame.projection)) &&
+           sameBytes(&frame.froxelRange, &prev.froxelRange, sizeof(frame.froxelRange)) &&
+           sameBytes(&frame.froxelDims, &prev.froxelDims, sizeof(frame.froxelDims)) &&
+           frame.ambient.w == prev.ambient.w;
+}
+
+}  // namespace
+
+void setTemporalBlend(shd::FrameUniforms& frame, const TemporalState& state, const TemporalFrame& t) {
+    frame.temporal = glm::vec4(0.0f);
+    if (!t.useHistory || t.historyWeight <= 0.0f) return;
+    const bool rests = viewRests(frame, state.frame);
+    frame.temporal.x = rests ? shd::temporalRestWeight(state.restFrames, t.historyWeight) : t.historyWeight;
+    frame.temporal.y = rests ? 1.0f : 0.0f;
+}
+
 void endTemporalFrame(TemporalState& state, const TemporalFrame& t, const shd::FrameUniforms& frame,
                       uint64_t sceneKey) {
+    // A moved view's history counts as one sample of the new view: the progressive mean restarts.
+    state.restFrames = frame.temporal.y != 0.0f ? state.restFrames + 1 : 1;
     state.lastWritten = t.writeIndex;
     state.valid = true;
     state.frame = frame;
@@ -118,7 +158,7 @@ void temporalPassCpu(FroxelVolumes& v, CpuHistory& history, const TemporalFrame&
     out.source.resize(v.source.size());
     out.extinction.resize(v.source.size());
     parallelFor(v.dims.y * v.dims.z, threads,
-                [&](int r) { resolveRow(v, in, out, history.state, t, r % v.dims.y, r / v.dims.y); });
+                [&](int r) { resolveRow(v, in, out, history.state, r % v.dims.y, r / v.dims.y); });
     // The integrate pass reads the resolved values.
     v.source = out.source;
     v.mediaExtinction = out.extinction;

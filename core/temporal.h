@@ -22,7 +22,8 @@ enum class HistoryMode {
 };
 
 // Everything that, when edited, must drop the history so that no edit ever leaves a ghost: the
-// compiled volumes, lights and ambient, the grid size and the temporal settings. The camera is not
+// compiled volumes, lights and ambient, the shapes and places of the geometry (it shadows the
+// froxels), the grid size and the temporal settings. The camera is not
 // in it: camera motion is what reprojection handles. FNV-1a over the compiled records' bytes.
 uint64_t temporalSceneKey(const CompiledScene& cs, const Scene& scene, glm::ivec3 dims);
 
@@ -35,6 +36,7 @@ struct TemporalState {
     shd::FrameUniforms frame{};   // the frame that wrote it (its view, projection and grid)
     uint64_t sceneKey = 0;
     int frameIndex = 0;           // jitter index of the next frame
+    int restFrames = 0;           // frames the history has averaged since the view last moved
 };
 
 struct TemporalFrame {
@@ -49,6 +51,10 @@ struct TemporalFrame {
 // Before a frame: drops the history when asked (Restart), when temporal is off, or when the key
 // changed, and picks the frame's jitter.
 TemporalFrame beginTemporalFrame(TemporalState& state, const Scene& scene, uint64_t sceneKey, HistoryMode mode);
+// Once the frame's uniforms are made: frame.temporal, the history weight and whether the view rests
+// (the same view, projection, grid and scene time as the frame that wrote the history): then the
+// weight makes the history a progressive mean (shd::temporalRestWeight), else it is t.historyWeight.
+void setTemporalBlend(shd::FrameUniforms& frame, const TemporalState& state, const TemporalFrame& t);
 // After a frame: what it wrote becomes the history of the next.
 void endTemporalFrame(TemporalState& state, const TemporalFrame& t, const shd::FrameUniforms& frame,
                       uint64_t sceneKey);

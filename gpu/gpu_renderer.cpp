@@ -183,10 +183,10 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         const TemporalFrame t = beginTemporalFrame(s_->temporalState, scene, sceneKey, mode);
         mode = HistoryMode::Continue;
         frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
-        frame.jitter.w = t.useHistory ? t.historyWeight : 0.0f;
         applyShadowSettings(frame, request);  // as renderFroxelCpu
         applySunShadowSettings(frame, cs);
         applyVdbShadowSettings(frame, cs, request);
+        setTemporalBlend(frame, s_->temporalState, t);
         std::memcpy(r[BufferId::frame].mapped, &frame, sizeof(frame));
         std::memcpy(r[BufferId::previousFrame].mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);

@@ -41,11 +41,12 @@ HistorySample readHistory(HistoryTaps k, int which) {
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
-    HistoryTaps k = historyTaps(id, frame, previousFrame, frame.jitter.w);
+    HistoryTaps k = historyTaps(id, frame, previousFrame, frame.temporal.x);
+    bool clampHistory = frame.temporal.y == 0.0f;
     bool read = k.weight > 0.0f;
     HistorySample histS = read ? readHistory(k, 0) : emptyHistorySample();
     HistorySample histE = read ? readHistory(k, 1) : emptyHistorySample();
-    imageStore(historySourceOut, id, resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight));
+    imageStore(historySourceOut, id, resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight, clampHistory));
     imageStore(historyExtinctionOut, id,
-               resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight));
+               resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, clampHistory));
 }

@@ -102,6 +102,7 @@ void expectFrameUniforms(const std::string& p) {
     EXPECT_MEMBER(p, FrameUniforms, jitter);
     EXPECT_MEMBER(p, FrameUniforms, shadows);
     EXPECT_MEMBER(p, FrameUniforms, vdb);
+    EXPECT_MEMBER(p, FrameUniforms, temporal);
 }
 
 void expectVolumeData(const std::string& p) {
@@ -175,7 +176,7 @@ TEST(SharedLayout, SunShadowFitStd430MatchesCpp) {
 TEST(SharedLayout, SizesAreTheDocumentedOnes) {
     EXPECT_EQ(sizeof(shd::VolumeData), 240u);
     EXPECT_EQ(sizeof(shd::LightData), 80u);
-    EXPECT_EQ(sizeof(shd::FrameUniforms), 400u);
+    EXPECT_EQ(sizeof(shd::FrameUniforms), 416u);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // history that cannot be poisoned, camera motion, and the shared reprojection rule's round trip.
 #include <gtest/gtest.h>
 
+#include "shaft_scenes.h"
 #include "test_support.h"
 
 #include <algorithm>
@@ -163,20 +164,43 @@ double staleShare(const Image& img, const Image& off, const Image& on) {
 
 }  // namespace
 
-TEST(TemporalJitter, FrameZeroIsTheCentreAndTheSequenceFillsTheFroxel) {
+TEST(TemporalJitter, FrameZeroIsTheCentreAndTheSequenceStratifiesDepth) {
     EXPECT_EQ(shd::temporalJitter(0), glm::vec3(0.5f));
-    // Low discrepancy: along each axis, 16 frames leave no gap wider than 2/16 (independent random
-    // samples leave ~3.4/16 on average); along depth, where slices band, the gap is exactly 1/16.
-    for (int axis = 0; axis < 3; ++axis) {
-        std::vector<float> v;
-        for (int n = 0; n < 16; ++n) v.push_back(shd::temporalJitter(n)[axis]);
-        std::sort(v.begin(), v.end());
-        float gap = v.front() + 1.0f - v.back();
-        for (size_t i = 1; i < v.size(); ++i) gap = std::max(gap, v[i] - v[i - 1]);
-        EXPECT_LE(gap * 16.0f, axis == 2 ? 1.0001f : 2.0f) << "axis " << axis;
-        EXPECT_GE(v.front(), 0.0f);
-        EXPECT_LT(v.back(), 1.0f);
+    // Every odd number of frames averages positions centred on the slice, and 17 frames put one
+    // sample in each 1/16 of it (plus the centre); across the tile every frame samples the column's
+    // centre (docs/temporal.md).
+    double sum = 0.0;
+    std::vector<int> bins(16, 0);
+    for (int n = 0; n < 17; ++n) {
+        const glm::vec3 j = shd::temporalJitter(n);
+        EXPECT_EQ(glm::vec2(j), glm::vec2(0.5f));
+        ASSERT_GE(j.z, 0.0f);
+        ASSERT_LT(j.z, 1.0f);
+        sum += j.z;
+        if (n % 2 == 0) {
+            EXPECT_NEAR(sum / (n + 1), 0.5, 1e-6) << n + 1 << " frames";
+        }
+        if (n > 0) ++bins[static_cast<size_t>(j.z * 16.0f)];
     }
+    for (int b : bins) EXPECT_EQ(b, 1);
+}
+
+TEST(TemporalRest, ProgressiveMeanUpToTheCapThenTheExponentialBlend) {
+    // The weights make the history the plain mean of every frame while the view rests...
+    double mean = 0.0;
+    for (int n = 1; n <= 18; ++n) {
+        const double sample = std::sin(3.0 * n);  // any sequence
+        const float w = n == 1 ? 0.0f : shd::temporalRestWeight(n - 1, 0.9f);
+        mean = (1.0 - w) * sample + w * mean;
+        double exact = 0.0;
+        for (int k = 1; k <= n; ++k) exact += std::sin(3.0 * k);
+        EXPECT_NEAR(mean, exact / n, 1e-6) << n;
+    }
+    // ... up to (1 + w) / (1 - w) frames (19 at w = 0.9), then the blend's own weight.
+    EXPECT_NEAR(shd::temporalRestWeight(18, 0.9f), 18.0f / 19.0f, 1e-6f);
+    EXPECT_EQ(shd::temporalRestWeight(19, 0.9f), 0.9f);
+    EXPECT_EQ(shd::temporalRestWeight(1000, 0.9f), 0.9f);
+    EXPECT_EQ(shd::temporalRestWeight(5, 0.0f), 0.0f);
 }
 
 TEST(TemporalReprojection, StaticCameraMapsEachFroxelOntoItself) {
@@ -215,14 +239,21 @@ TEST(TemporalResolve, NonFiniteValuesNeverLeaveTheResolve) {
     mixed = shd::addHistoryTap(mixed, glm::vec4(1.75f), glm::ivec3(1), glm::vec3(0.5f));
     EXPECT_EQ(mixed.sum / mixed.weight, glm::vec4(1.75f));
     // NaN current: the clamped history; NaN history: the current; both: 0; no bounds: the current.
-    EXPECT_EQ(shd::resolveTemporal(glm::vec4(nan), history(glm::vec4(5.0f)), b, 0.9f), glm::vec4(2.0f));
-    EXPECT_EQ(shd::resolveTemporal(glm::vec4(1.5f), history(glm::vec4(inf)), b, 0.9f), glm::vec4(1.5f));
-    EXPECT_EQ(shd::resolveTemporal(glm::vec4(nan), history(glm::vec4(nan)), b, 0.9f), glm::vec4(0.0f));
-    EXPECT_EQ(shd::resolveTemporal(glm::vec4(-inf), history(glm::vec4(1.0f)), shd::emptyBounds(), 0.9f),
-              glm::vec4(0.0f));
-    // The blend itself: mix(current, clamp(history), weight).
-    const glm::vec4 r = shd::resolveTemporal(glm::vec4(1.0f), history(glm::vec4(1.5f)), b, 0.5f);
+    for (bool clampHistory : {true, false}) {
+        const glm::vec4 held(clampHistory ? 2.0f : 5.0f);  // the history, clamped or not
+        EXPECT_EQ(shd::resolveTemporal(glm::vec4(nan), history(glm::vec4(5.0f)), b, 0.9f, clampHistory), held);
+        EXPECT_EQ(shd::resolveTemporal(glm::vec4(1.5f), history(glm::vec4(inf)), b, 0.9f, clampHistory),
+                  glm::vec4(1.5f));
+        EXPECT_EQ(shd::resolveTemporal(glm::vec4(nan), history(glm::vec4(nan)), b, 0.9f, clampHistory),
+                  glm::vec4(0.0f));
+        EXPECT_EQ(shd::resolveTemporal(glm::vec4(-inf), history(glm::vec4(1.0f)), shd::emptyBounds(), 0.9f, clampHistory),
+                  glm::vec4(0.0f));
+    }
+    // The blend itself: mix(current, clamp(history), weight); at rest the history unclamped.
+    const glm::vec4 r = shd::resolveTemporal(glm::vec4(1.0f), history(glm::vec4(1.5f)), b, 0.5f, true);
     EXPECT_NEAR(r.x, 1.25f, 1e-6f);
+    const glm::vec4 rest = shd::resolveTemporal(glm::vec4(1.0f), history(glm::vec4(3.0f)), b, 0.5f, false);
+    EXPECT_NEAR(rest.x, 2.0f, 1e-6f);
 }
 
 // The convergence curve: with a static camera, the error against the reference falls as frames
@@ -256,6 +287,34 @@ TEST(TemporalConvergence, StaticViewErrorAndBandingFallAndMediumApproachesUltra)
     EXPECT_LT(error[15], 0.8 * error[0]);
     EXPECT_LT(banding[15], 0.6 * banding[0]);
     EXPECT_LT(error[15], 1.25 * ultraError);
+}
+
+// The same promise on a lit scene: the sun through a 1.5 m roof gap over height fog, one shaft seen
+// from the side. Its error is mostly the shaft's width on 12 px tiles, which no number of frames
+// removes, so the gain is small; what must hold is that 16 frames beat one and that more frames never
+// make it worse beyond a band of 0.05 points: the error wanders by up to 0.03 points from one frame
+// count to the next as the depth samples fill the slices unevenly (4.575% at 4 frames, 4.605% at 8,
+// 4.592% at 16, 4.597% at 32; docs/temporal.md, "Convergence").
+TEST(TemporalConvergence, LitShaftErrorFallsFromOneToFourToSixteenFrames) {
+    const Scene scene = test::sunShaftScene(1.5f);
+    RenderRequest req = request(Quality::Medium, HistoryMode::Continue);
+    req.width = 160;
+    req.height = 90;
+    req.threads = 0;
+    const Image ref = renderReference(scene, req);
+    FroxelCpuRenderer renderer;
+    std::vector<double> error;
+    for (int frame = 1; frame <= 16; ++frame) {
+        const FroxelResult r = renderer.render(scene, req);
+        if (frame == 1 || frame == 4 || frame == 16) {
+            error.push_back(relativeMeanAbsError(r.image, ref));
+            std::printf("[convergence] sun shaft, medium, frame %2d: error %.5f\n", frame, error.back());
+        }
+    }
+    const double band = 5e-4;
+    EXPECT_LT(error[2], error[0]);
+    EXPECT_LE(error[1], error[0] + band);
+    EXPECT_LE(error[2], error[1] + band);
 }
 
 namespace {
@@ -292,7 +351,12 @@ TEST(TemporalHistory, SceneKeyIgnoresTheCameraAndSeesEveryEdit) {
     shifted.volumes[0].transform.translation.x += 0.01f;
     Scene sky = scene;
     sky.ambient.x += 0.01f;
-    for (const Scene* s : {&dimmer, &shifted, &sky}) EXPECT_NE(key(scene), key(*s));
+    Scene lowered = scene;  // geometry shadows the froxels
+    lowered.geometry[0].height -= 0.01f;
+    for (const Scene* s : {&dimmer, &shifted, &sky, &lowered}) EXPECT_NE(key(scene), key(*s));
+    Scene recoloured = scene;  // surface colours never reach the froxels
+    recoloured.geometry[0].albedo = glm::vec3(0.9f);
+    EXPECT_EQ(key(scene), key(recoloured));
 }
 
 // Editing must never leave a ghost: the spot light switched off after 8 frames is gone from the
@@ -317,9 +381,10 @@ TEST(TemporalHistory, LightSwitchedOffLeavesNoStaleLight) {
     }
 }
 
-// Second line of defence, for an edit the key would miss: with the history kept (the key forced
-// equal), the neighbourhood clamp alone removes the switched-off light within a frame. Compared with
-// a sequence that never had the light, at the same jitter indices.
+// Second line of defence, for an edit the key would miss while the view moves: with the history
+// kept (the key forced equal), the neighbourhood clamp alone removes the switched-off light within a
+// frame. Compared with a sequence that never had the light, at the same jitter indices and views.
+// (While the view rests there is no clamp, docs/temporal.md: the key is then the only defence.)
 TEST(TemporalHistory, ClampingAloneRemovesStaleLightWhenTheHistoryIsKept) {
     const Scene on = conesScene();
     Scene off = on;
@@ -331,8 +396,10 @@ TEST(TemporalHistory, ClampingAloneRemovesStaleLightWhenTheHistoryIsKept) {
     const uint64_t offKey = neverOn.state.sceneKey;
     for (int k = 1; k <= 3; ++k) {
         h.state.sceneKey = offKey;  // as if the edit had not been noticed
-        const Image img = renderFroxelFrameCpu(off, req, h).image;
-        const Image truth = renderFroxelFrameCpu(off, req, neverOn).image;
+        Scene moving = off;         // a slow orbit: 0.1 degree per frame
+        moving.camera = orbitCamera(off.camera, 0.1f * static_cast<float>(k));
+        const Image img = renderFroxelFrameCpu(moving, req, h).image;
+        const Image truth = renderFroxelFrameCpu(moving, req, neverOn).image;
         const double stale = staleShare(img, truth, lastOn);
         std::printf("[ghost] history kept, frame %d after the switch: stale light %.2f%%\n", k, 100.0 * stale);
         EXPECT_LT(stale, 0.05);

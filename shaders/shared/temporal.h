@@ -4,8 +4,8 @@
 // (rgb, voxelize pass), between the light and the integrate passes (Hillaire 2015 blends the lit
 // scattering/extinction volume before integration). Blending before integration keeps the
 // integration exact for whatever (S, sigma_t) field results, and it is what removes the slice bands:
-// each frame samples S and sigma_t at a different point inside each froxel (temporalJitter), so the
-// history converges to the froxel's average rather than its value at the centre.
+// each frame samples S and sigma_t at a different depth inside each froxel (temporalJitter), so the
+// history converges to the froxel's average along depth rather than its value at the centre.
 //
 // Reprojection rule (per froxel (x, y, s) of the current frame):
 //   1. p = world position of the froxel's centre (x + 0.5, y + 0.5, s + 0.5) in the current frame;
@@ -22,6 +22,11 @@
 //      motion (reprojection far from where the froxel was) trusts the history less;
 //   7. resolved = mix(current, clamped history, weight). NaN/Inf never enter: a non-finite current
 //      value is replaced by the clamped history (or 0), a non-finite history is rejected.
+// While the view rests (same view, projection, grid and scene time as the frame that wrote the
+// history; FrameUniforms.temporal.y = 1) the history is the mean of the previous n frames' samples
+// and the blend makes it the mean of n + 1: weight n / (n + 1) (temporalRestWeight), no clamp (it
+// can only pull the mean toward this frame's sample: the scene key already drops the history on
+// any edit). Past TEMPORAL_REST_CAP frames the weight stays history_weight, as in motion.
 #ifndef BRUME_SHARED_TEMPORAL_H
 #define BRUME_SHARED_TEMPORAL_H
 
@@ -50,13 +55,34 @@ BRUME_FUNC float radicalInverse(int n, int base) {
     return r;
 }
 
-// Sample position inside each froxel for a frame, in [0,1)^3: the Halton sequence (bases 3, 5
-// across the tile, 2 along depth, where the slices band and base 2 stratifies every 2^m frames
-// perfectly), offset by 0.5 so that frame 0 samples the centre, as a render without temporal does.
+// Sample position inside each froxel for a frame, in [0,1)^3. Frame 0 samples the centre, as a
+// render without temporal does. Along depth, frames 2k-1 and 2k sample a_k and 1 - a_k, mirrored
+// about the centre, so that every odd number of frames averages positions centred on the slice (a
+// plain van der Corput sequence from the centre leaves its 2^m-frame means 1/2^(m+1) of a slice in
+// front of it: a quarter slice after 2 frames); a_k = fract(ri2(k - 1) + 15/32) / 2 runs through
+// the front half from near its middle (the first pair near the quarter points), and 8 pairs put one
+// sample in each 1/16 of the slice.
+// Across the tile every frame samples the column's centre: the composite reconstructs each pixel
+// bilinearly between column centres, which interpolates point samples well, but the tile's average
+// read that way is blurred twice (a box and a tent: 1.5x the blur), and on lit scenes that costs more
+// than averaging gains (docs/temporal.md, "Why not across the tile": default scene, medium, 16
+// frames, 3.43% with the tile covered, 2.82% without, 2.89% for one frame).
 BRUME_FUNC vec3 temporalJitter(int frameIndex) {
     int n = frameIndex % TEMPORAL_SEQUENCE_LENGTH;
-    vec3 h = vec3(radicalInverse(n, 3), radicalInverse(n, 5), radicalInverse(n, 2));
-    return fract(vec3(0.5f) + h);
+    if (n == 0) return vec3(0.5f);
+    float a = 0.5f * fract(radicalInverse((n - 1) / 2, 2) + 15.0f / 32.0f);
+    return vec3(0.5f, 0.5f, (n % 2) == 1 ? a : fract(1.0f - a));
+}
+
+// History weight of a frame whose view rests: the history holds the mean of restFrames samples
+// (>= 1), and mix(current, history, n / (n + 1)) makes it the mean of n + 1. The progressive mean
+// runs until its variance equals the exponential blend's steady state, (1 - w) / (1 + w) of one
+// frame's, i.e. (1 + w) / (1 - w) frames (19 at w = 0.9); then the weight stays w, which keeps that
+// variance, so the switch makes no visible step.
+BRUME_FUNC float temporalRestWeight(int restFrames, float historyWeight) {
+    float n = float(max(restFrames, 1));
+    float cap = (1.0f + historyWeight) / max(1.0f - historyWeight, 1e-6f);
+    return n + 1.0f <= cap + 1.0e-3f ? n / (n + 1.0f) : historyWeight;
 }
 
 // Where froxel `froxel` of frame `cur` reads last frame's history, and with what weight (steps 1-4
@@ -129,12 +155,13 @@ BRUME_FUNC Bounds growBounds(Bounds b, vec4 v) {
 }
 
 // Step 7 for one quantity. `current` is this frame's value, `history` the history read (its finite
-// taps), `bounds` the neighbourhood of `current`, `weight` from historyTaps. Always finite.
-BRUME_FUNC vec4 resolveTemporal(vec4 current, HistorySample history, Bounds bounds, float weight) {
+// taps), `bounds` the neighbourhood of `current`, `weight` from historyTaps; `clampHistory` false
+// while the view rests (the bounds then only guard a non-finite current value). Always finite.
+BRUME_FUNC vec4 resolveTemporal(vec4 current, HistorySample history, Bounds bounds, float weight, bool clampHistory) {
     bool haveBounds = all(lessThanEqual(bounds.lo, bounds.hi));
     bool historyOk = weight > 0.0f && haveBounds && history.weight > 0.0f;
     vec4 h = historyOk ? history.sum / history.weight : vec4(0.0f);
-    vec4 clamped = historyOk ? clamp(h, bounds.lo, bounds.hi) : vec4(0.0f);
+    vec4 clamped = historyOk ? (clampHistory ? clamp(h, bounds.lo, bounds.hi) : h) : vec4(0.0f);
     if (!allFinite4(current)) return clamped;
     return historyOk ? mix(current, clamped, weight) : current;
 }

@@ -61,7 +61,7 @@ struct LightData {
                           // 0 = none (local_shadow.h)
 };
 
-// Per-frame constants shared by every pass. 384 bytes.
+// Per-frame constants shared by every pass. 416 bytes.
 struct FrameUniforms {
     mat4 viewFromWorld;
     mat4 worldFromView;
@@ -73,8 +73,7 @@ struct FrameUniforms {
     vec4 froxelRange;     // x: froxel near [m]; y: froxel far [m]; z: slice distribution exponent
     ivec4 froxelDims;     // xyz: froxel grid size; w: tile size [px]
     ivec4 counts;         // x: image width, y: image height [px]; z: volume count; w: light count
-    vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre);
-                          // w: GPU temporal pass only: this frame's history weight (0 = no history)
+    vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre); w unused
     ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
                           // is always on; shadows.h); y: transmittance volume reduction r >= 1
                           // (shadow_volume.h); z: index + 1 of the light the sun shadow
@@ -82,6 +81,9 @@ struct FrameUniforms {
                           // point/spot shadow map face, 0 = none (local_shadow.h)
     ivec4 vdb;            // x: shadow march samples per shortest voxel edge, 0 = vdb volumes cast
                           // no fog shadows (vdb_shadow.h); yzw unused
+    vec4 temporal;        // temporal pass (temporal.h): x: this frame's history weight (0 = no
+                          // history); y: 1 = the view rests (progressive mean, no clamp), 0 = it
+                          // moved or the scene time changed; zw unused
 };
 
 BRUME_NAMESPACE_END
