@@ -621,16 +621,18 @@ std::optional<Geometry> readGeometry(Ctx& c, const json& v, const std::string& p
 }
 
 template <class T, class ReadOne>
-void readList(Ctx& c, Obj& parent, std::string_view key, std::vector<T>& out, ReadOne readOne) {
-    const json* v = parent.get(key);
-    if (!v) return;
-    const std::string path = parent.at(key);
-    if (!v->is_array()) {
-        c.fail(path, "expected an array, got " + describe(*v));
+void readArray(Ctx& c, const json& v, const std::string& path, std::vector<T>& out, ReadOne readOne) {
+    if (!v.is_array()) {
+        c.fail(path, "expected an array, got " + describe(v));
         return;
     }
-    for (size_t i = 0; i < v->size() && !c.failed(); ++i)
-        if (std::optional<T> item = readOne(c, (*v)[i], indexed(path, i))) out.push_back(std::move(*item));
+    for (size_t i = 0; i < v.size() && !c.failed(); ++i)
+        if (std::optional<T> item = readOne(c, v[i], indexed(path, i))) out.push_back(std::move(*item));
+}
+
+template <class T, class ReadOne>
+void readList(Ctx& c, Obj& parent, std::string_view key, std::vector<T>& out, ReadOne readOne) {
+    if (const json* v = parent.get(key)) readArray(c, *v, parent.at(key), out, readOne);
 }
 
 }  // namespace
@@ -1053,7 +1055,7 @@ Result<nlohmann::json> parseStrictJson(std::string_view text, const std::string&
 Result<std::vector<Light>> readLights(const nlohmann::json& value, const std::string& file, const std::string& path) {
     Ctx c{file, std::nullopt};
     std::vector<Light> out;
-    readList(c, value, path, out, readLight);
+    readArray(c, value, path, out, readLight);
     if (c.error) return *c.error;
     return out;
 }
@@ -1061,7 +1063,7 @@ Result<std::vector<Light>> readLights(const nlohmann::json& value, const std::st
 Result<std::vector<Volume>> readVolumes(const nlohmann::json& value, const std::string& file, const std::string& path) {
     Ctx c{file, std::nullopt};
     std::vector<Volume> out;
-    readList(c, value, path, out, readVolume);
+    readArray(c, value, path, out, readVolume);
     checkOneEncoding(c, out);
     if (c.error) return *c.error;
     return out;
@@ -1070,7 +1072,8 @@ Result<std::vector<Volume>> readVolumes(const nlohmann::json& value, const std::
 Result<glm::vec3> readAmbient(const nlohmann::json& object, const std::string& file, glm::vec3 fallback) {
     Ctx c{file, std::nullopt};
     glm::vec3 out = fallback;
-    readVec3(c, object, "", st::ambient, out);
+    Obj o(c, object, "", "a preset");  // its other keys are the caller's (checkKeys)
+    readVec3(c, o, st::ambient, out);
     if (c.error) return *c.error;
     return out;
 }
