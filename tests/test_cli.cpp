@@ -200,7 +200,7 @@ TEST_F(Cli, BadArgumentsGiveOneLine) {
     expectOneLineError(brume("render " + scene + " -o out.jpg"), "out.jpg");
     expectOneLineError(brume("render " + scene + " -o no_such_folder/out.png"), "no_such_folder");
     expectOneLineError(brume("frobnicate"), "frobnicate");
-    expectOneLineError(brume(""), "render, validate, settings, bench, info, noise, preset, export or bake");
+    expectOneLineError(brume(""), "render, validate, settings, bench, tradeoff, info, noise, preset, export or bake");
     expectOneLineError(brume("--threads 2"), "");
     EXPECT_TRUE(listFolder(dir_ / "work").empty()) << "failed commands must leave no file behind";
 }
@@ -340,7 +340,8 @@ TEST_F(Cli, FramesAndOrbitWriteTheLastFrameOfTheSequence) {
         ASSERT_TRUE(img.ok()) << img.error().message;
         const brume::Image expected = cpuSequence(6, orbit.empty() ? 0.0f : 3.0f);
         EXPECT_LT(brume::relativeMeanAbsError(img.value(), expected), 1e-6) << orbit;
-        EXPECT_GT(brume::relativeMeanAbsError(img.value(), cpuSequence(1, 0.0f)), 1e-3) << orbit;
+        // Jittered along depth only (docs/temporal.md): 6 still frames differ from 1 by ~7e-4.
+        EXPECT_GT(brume::relativeMeanAbsError(img.value(), cpuSequence(1, 0.0f)), 1e-4) << orbit;
     }
     const CliRun help = brume("render --help");
     EXPECT_NE(help.out.find("--orbit"), std::string::npos) << help.out;
