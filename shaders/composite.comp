@@ -38,7 +38,8 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
 Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
     // The surface lights (core/light_reach.h) hold every directional light that shines, in
-    // increasing order: the CPU's sum over all lights, without looping over the local ones.
+    // increasing order, before any other: the CPU's sum over all lights, stopping at the first
+    // local one (a skipped trip would cost as much as a taken one on lavapipe).
     int reach = lightReachOffset(frame.froxelDims.xyz);
     int pieces = distantShadowPieceCount(s0, s1);
     for (int piece = 0; piece < pieces; ++piece) {
@@ -51,7 +52,7 @@ Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
         }
         for (int k = 0; k < lightClusters[reach]; ++k) {
             int j = lightClusters[reach + 1 + k];
-            if (lights[j].kind.x != LIGHT_DIRECTIONAL) continue;
+            if (lights[j].kind.x != LIGHT_DIRECTIONAL) break;
             vec3 t = lightFogTransmittance(lights[j], middle, -lights[j].direction.xyz, BRUME_HUGE);
             for (int i = 0; i < frame.counts.z; ++i) {
                 float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
