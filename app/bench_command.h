@@ -21,6 +21,8 @@ struct BenchOptions {
     bool noLightCulling = false;
     bool noVdbCulling = false;
     std::string device;
+    std::string jsonPath;      // --json: medians written here (atomically)
+    std::string baselinePath;  // --baseline: an earlier --json output to print ratios against
     CLI::Option* widthOption = nullptr;
     CLI::Option* heightOption = nullptr;
     CLI::Option* qualityOption = nullptr;

@@ -204,18 +204,20 @@ shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated 
     for (int piece = 0; piece < pieces; ++piece) {
         const glm::vec2 b = shd::distantShadowPiece(s0, s1, piece, pieces);
         const glm::vec3 middle = cs.cameraPosition + dir * std::sqrt(b.x * b.y);
+        // Ambient and emission first, then each directional light with its transmittance evaluated
+        // once per piece (the GPU's composite.comp in the same order).
         shd::DistantSegment seg = shd::emptyDistantSegment();
         for (const shd::VolumeData& v : cs.volumes) {
             const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, b.x, b.y);
-            if (len <= 0.0f) continue;
-            glm::vec3 light = cs.ambient;
-            for (const shd::LightData& l : cs.lights) {
-                if (l.kind.x != shd::LIGHT_DIRECTIONAL) continue;
-                const glm::vec3 toLight = -glm::vec3(l.direction);
-                light += shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w) *
-                         lightFogTransmittance(cs, l, middle, toLight, shd::BRUME_HUGE, 0);
+            seg = shd::addDistantVolume(seg, v, len, cs.ambient);
+        }
+        for (const shd::LightData& l : cs.lights) {
+            if (l.kind.x != shd::LIGHT_DIRECTIONAL) continue;
+            const glm::vec3 t = lightFogTransmittance(cs, l, middle, -glm::vec3(l.direction), shd::BRUME_HUGE, 0);
+            for (const shd::VolumeData& v : cs.volumes) {
+                const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, b.x, b.y);
+                seg = shd::addDistantLight(seg, v, len, shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w) * t);
             }
-            seg = shd::addDistantVolume(seg, v, len, light);
         }
         a = shd::accumulateDistant(a, seg);
     }

@@ -1,5 +1,6 @@
 #include "light_reach.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "clusters.h"
@@ -54,6 +55,8 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
         const bool read = listed[i] || (surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
         out.shadowVolume[i] = !culling || read ? 1 : 0;
     }
+    std::stable_partition(out.surfaceLights.begin(), out.surfaceLights.end(),
+                          [&](int i) { return cs.lights[static_cast<size_t>(i)].kind.x == shd::LIGHT_DIRECTIONAL; });
     return out;
 }
 

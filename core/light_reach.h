@@ -19,7 +19,10 @@
 namespace brume {
 
 struct LightReach {
-    std::vector<int> surfaceLights;  // light indices, ascending
+    // Light indices: the directional ones ascending, then the others ascending. The composite's
+    // distant fog needs only the directional lights and stops at the first other one: on lavapipe
+    // a loop trip costs the same whether its body is skipped or not (docs/performance.md).
+    std::vector<int> surfaceLights;
     std::vector<int> shadowVolume;   // per light: 1 = its transmittance layer is computed
 };
 

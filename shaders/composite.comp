@@ -33,8 +33,14 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
 
 // Height and depth fog along the camera ray between ray distances s0 and s1, lit by the
 // directional lights (times the fog transmittance toward them, per piece) and the ambient.
+// Each light's transmittance is evaluated once per piece, outside the loop over volumes (it does
+// not depend on the volume): inside it, the pass cost O(volumes^2) transmittance terms per piece.
 Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
+    // The surface lights (core/light_reach.h) hold every directional light that shines, in
+    // increasing order, before any other: the CPU's sum over all lights, stopping at the first
+    // local one (a skipped trip would cost as much as a taken one on lavapipe).
+    int reach = lightReachOffset(frame.froxelDims.xyz);
     int pieces = distantShadowPieceCount(s0, s1);
     for (int piece = 0; piece < pieces; ++piece) {
         vec2 b = distantShadowPiece(s0, s1, piece, pieces);
@@ -42,19 +48,16 @@ Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
         DistantSegment seg = emptyDistantSegment();
         for (int i = 0; i < frame.counts.z; ++i) {
             float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
-            if (len <= 0.0f) continue;
-            vec3 light = frame.ambient.rgb;
-            // The surface lights (core/light_reach.h) hold every directional light that shines, in
-            // increasing order: the CPU's sum over all lights, without looping over the local ones.
-            int reach = lightReachOffset(frame.froxelDims.xyz);
-            for (int k = 0; k < lightClusters[reach]; ++k) {
-                int j = lightClusters[reach + 1 + k];
-                if (lights[j].kind.x != LIGHT_DIRECTIONAL) continue;
-                vec3 toLight = -lights[j].direction.xyz;
-                light += distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w) *
-                         lightFogTransmittance(lights[j], middle, toLight, BRUME_HUGE);
+            seg = addDistantVolume(seg, volumes[i], len, frame.ambient.rgb);
+        }
+        for (int k = 0; k < lightClusters[reach]; ++k) {
+            int j = lightClusters[reach + 1 + k];
+            if (lights[j].kind.x != LIGHT_DIRECTIONAL) break;
+            vec3 t = lightFogTransmittance(lights[j], middle, -lights[j].direction.xyz, BRUME_HUGE);
+            for (int i = 0; i < frame.counts.z; ++i) {
+                float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
+                seg = addDistantLight(seg, volumes[i], len, distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w) * t);
             }
-            seg = addDistantVolume(seg, volumes[i], len, light);
         }
         a = accumulateDistant(a, seg);
     }

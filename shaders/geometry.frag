@@ -25,7 +25,7 @@ void main() {
     vec3 m = abs(worldPos);
     vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
     SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadows.y);
-    // Only the lights that can reach the view frustum (core/light_reach.h), in increasing order.
+    // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
     int reach = lightReachOffset(frame.froxelDims.xyz);
     int count = lightClusters[reach];
     for (int k = 0; k < count; ++k) {

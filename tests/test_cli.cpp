@@ -232,6 +232,7 @@ TEST_F(Cli, HelpOfEveryCommandMentionsEveryOption) {
           "--threads", "px", "1..16384", "low|medium|high|ultra", "Default:", "Range:"}},
         {"validate --help", {"scene"}},
         {"settings --help", {"--markdown"}},
+        {"bench --help", {"--frames", "--warmup", "--cpu", "--json", "--baseline", "--device"}},
     };
     for (const Case& c : cases) {
         const CliRun r = brume(c.command);
@@ -255,6 +256,30 @@ TEST_F(Cli, SettingsListEverySetting) {
     }
     EXPECT_NE(plain.out.find("16384"), std::string::npos) << "ranges are listed";
     EXPECT_NE(markdown.out.find("|"), std::string::npos);
+}
+
+// bench --json writes the medians; --baseline reads them back and prints this run's ratios to them.
+// A baseline that is missing, not JSON or lacks the medians: one sentence naming it, exit 2, and
+// no benchmark run.
+TEST_F(Cli, BenchJsonAndBaselineRatios) {
+    const std::string bench = "bench " + quoted(kDefaultScene) + kSmall + " --cpu --frames 1 --warmup 0";
+    const CliRun first = brume(bench + " --json base.json");
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    const std::string json = readText(dir_ / "work" / "base.json");
+    for (const char* key : {"\"wall_ms\"", "\"pass_ms\"", "\"renderer\": \"cpu\"", "\"quality\": \"low\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key << " missing from " << json;
+    const CliRun again = brume(bench + " --baseline base.json");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_NE(again.out.find("this run / baseline"), std::string::npos) << again.out;
+
+    writeText(dir_ / "work" / "broken.json", "{\"wall_ms\": 3");
+    writeText(dir_ / "work" / "nopasses.json", "{\"wall_ms\": 3}");
+    writeText(dir_ / "work" / "negative.json", "{\"wall_ms\": 3, \"pass_ms\": {\"light\": -1}}");
+    expectOneLineError(brume(bench + " --baseline missing.json"), "missing.json");
+    expectOneLineError(brume(bench + " --baseline broken.json"), "broken.json: the baseline is not a JSON object");
+    expectOneLineError(brume(bench + " --baseline nopasses.json"), "\"pass_ms\"");
+    expectOneLineError(brume(bench + " --baseline negative.json"), "\"pass_ms\".light");
+    expectOneLineError(brume(bench + " --json nowhere/b.json"), "nowhere");
 }
 
 TEST_F(Cli, RelativeScenePathFromAnotherFolder) {

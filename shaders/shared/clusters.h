@@ -32,7 +32,8 @@ BRUME_FUNC int clusterRecord(ivec3 froxel, ivec3 froxelDims) {
 }
 
 // After the cluster records, the frame's light reach (core/light_reach.h), 2 + 2 x lights ints:
-//   [0] n surface lights, [1..n] their indices ascending (the geometry and composite passes' loops),
+//   [0] n surface lights, [1..n] their indices, directional ones first, each group ascending (the
+//   geometry and composite passes' loops),
 //   [1 + lights] m, [2 + lights..] the m lights whose transmittance layer is computed, ascending
 //   (the shadow volume pass dispatches m layers).
 BRUME_FUNC int lightReachOffset(ivec3 froxelDims) {

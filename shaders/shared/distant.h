@@ -113,6 +113,16 @@ BRUME_FUNC DistantSegment addDistantVolume(DistantSegment d, VolumeData v, float
     return d;
 }
 
+// Adds one directional light's in-scattering by one volume: lightPerSigmaS = distantLightPerSigmaS
+// (g of this volume) x the fog's transmittance toward the light. With addDistantVolume called with
+// the ambient alone, this gives the same segment as addDistantVolume with the sum over lights, but
+// lets the caller evaluate each light's transmittance once per piece instead of once per volume.
+BRUME_FUNC DistantSegment addDistantLight(DistantSegment d, VolumeData v, float densityLength, vec3 lightPerSigmaS) {
+    if (densityLength <= 0.0f) return d;
+    d.sourceLength += vec3(v.sigmaS_g) * lightPerSigmaS * densityLength;
+    return d;
+}
+
 BRUME_FUNC Accumulated accumulateDistant(Accumulated a, DistantSegment d) {
     vec3 phi = vec3(slabPhi(d.opticalDepth.x), slabPhi(d.opticalDepth.y), slabPhi(d.opticalDepth.z));
     a.scattering += a.transmittance * d.sourceLength * phi;

@@ -62,7 +62,15 @@ BRUME_FUNC float fadedPieceLength(vec3 lo, vec3 ld, float s0, float s1, float fa
     return len * (1.0f - faded);
 }
 
+// Orders a pair of cuts (a compare-exchange of the sorting network below).
+BRUME_FUNC vec2 sortedPair(float a, float b) { return vec2(min(a, b), max(a, b)); }
+
 // Integral of a box volume's density along o + s * d (d unit), s in [0, maxDist].
+// Branch-free in the data (lavapipe runs 8 lanes in lockstep and pays for every loop trip any lane
+// takes): the six cuts where |q_a| = |q_b| for an axis pair are clamped into the chord (a cut that
+// misses it becomes a piece of length 0, which adds exactly 0), ordered by a fixed 12-exchange
+// sorting network, and the seven pieces between chord ends and cuts are summed in order. The same
+// pieces as a sorted list of only the cuts inside the chord, so the same sum.
 BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
     vec3 lo = vec3(v.localFromWorld * vec4(o, 1.0f));
     vec3 ld = vec3(v.localFromWorld * vec4(d, 0.0f));
@@ -71,31 +79,37 @@ BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
     if (!(chord.y > chord.x)) return 0.0f;
     float fade = v.params.x;
     if (fade <= 0.0f) return chord.y - chord.x;
-    // Cut where |q_a| = |q_b| for each axis pair: between cuts one axis dominates.
-    float cuts[8];
-    int n = 0;
-    cuts[n++] = chord.x;
-    for (int a = 0; a < 3; ++a) {
-        for (int b = a + 1; b < 3; ++b) {
-            for (int k = 0; k < 2; ++k) {
-                float sgn = k == 0 ? -1.0f : 1.0f;
-                float denom = ld[a] - sgn * ld[b];
-                if (denom == 0.0f) continue;
-                float s = (sgn * lo[b] - lo[a]) / denom;
-                if (s > chord.x && s < chord.y) cuts[n++] = s;
-            }
+    // Cut where |q_a| = |q_b| for each axis pair (q_a = -q_b, then q_a = q_b): between cuts one
+    // axis dominates.
+    float c[6];
+    for (int p = 0; p < 3; ++p) {
+        int a = p == 2 ? 1 : 0;
+        int b = p == 0 ? 1 : 2;
+        for (int k = 0; k < 2; ++k) {
+            float sgn = k == 0 ? -1.0f : 1.0f;
+            float denom = ld[a] - sgn * ld[b];
+            float s = denom != 0.0f ? (sgn * lo[b] - lo[a]) / denom : chord.x;
+            // NaN-free: a cut outside (chord.x, chord.y) lands on an end.
+            c[2 * p + k] = s > chord.x ? min(s, chord.y) : chord.x;
         }
     }
-    cuts[n++] = chord.y;
-    for (int i = 1; i < n; ++i) {
-        for (int j = i; j > 0 && cuts[j - 1] > cuts[j]; --j) {
-            float t = cuts[j - 1];
-            cuts[j - 1] = cuts[j];
-            cuts[j] = t;
-        }
-    }
-    float total = 0.0f;
-    for (int i = 0; i + 1 < n; ++i) total += fadedPieceLength(lo, ld, cuts[i], cuts[i + 1], fade);
+    // Optimal sorting network for 6 keys (12 compare-exchanges, depth 5).
+    vec2 t;
+    t = sortedPair(c[1], c[2]); c[1] = t.x; c[2] = t.y;
+    t = sortedPair(c[4], c[5]); c[4] = t.x; c[5] = t.y;
+    t = sortedPair(c[0], c[2]); c[0] = t.x; c[2] = t.y;
+    t = sortedPair(c[3], c[5]); c[3] = t.x; c[5] = t.y;
+    t = sortedPair(c[0], c[1]); c[0] = t.x; c[1] = t.y;
+    t = sortedPair(c[3], c[4]); c[3] = t.x; c[4] = t.y;
+    t = sortedPair(c[2], c[5]); c[2] = t.x; c[5] = t.y;
+    t = sortedPair(c[0], c[3]); c[0] = t.x; c[3] = t.y;
+    t = sortedPair(c[1], c[4]); c[1] = t.x; c[4] = t.y;
+    t = sortedPair(c[2], c[4]); c[2] = t.x; c[4] = t.y;
+    t = sortedPair(c[1], c[3]); c[1] = t.x; c[3] = t.y;
+    t = sortedPair(c[2], c[3]); c[2] = t.x; c[3] = t.y;
+    float total = fadedPieceLength(lo, ld, chord.x, c[0], fade);
+    for (int i = 0; i < 5; ++i) total += fadedPieceLength(lo, ld, c[i], c[i + 1], fade);
+    total += fadedPieceLength(lo, ld, c[5], chord.y, fade);
     return total;
 }
 
