@@ -531,3 +531,38 @@ TEST(EditorGizmo, ScalingAlongXDoublesOnlyXWithSnapping) {
     EXPECT_EQ(scalePath(scene, "light", spot), "");
     EXPECT_EQ(rotationPath(scene, "light", 0), "");  // the sun: no pivot to turn about
 }
+
+// Found by fuzzing (tests/fuzz/fuzz_action; the input is in its corpus): a byte that is not UTF-8 in
+// a settings path ("set volumsedge_fa\xFEe 0.5") made the JSON writer throw, and the editor end on an
+// uncaught exception. Now one sentence, and the document is unchanged; valid UTF-8 names still work.
+TEST(EditorActions, TextThatIsNotUtf8IsAnErrorNotACrash) {
+    Document doc = loadDefault();
+    const std::string before = sceneToJson(doc.scene());
+    for (const std::string& line : {std::string("set volumsedge_fa\xFE" "e 0.5"), std::string("rename volume 0 \"a\xC0\xAF\""),
+                                    std::string("set volumes[0].name \"\xED\xA0\x80\"")}) {
+        Result<Action> a = parseAction(line);
+        ASSERT_FALSE(a.ok()) << line;
+        EXPECT_EQ(a.error().message, "The action line is not valid UTF-8 text.");
+        Result<void> r = doc.apply(Action{"set", {"volumes[0].name", line}});  // past the parser
+        ASSERT_FALSE(r.ok());
+        EXPECT_EQ(r.error().message, "set: an argument is not valid UTF-8 text.");
+    }
+    EXPECT_EQ(sceneToJson(doc.scene()), before);
+    run(doc, "rename volume 0 \"brume \xC3\xA9t\xC3\xA9 \xE2\x9B\x85\"");
+    // Also from fuzzing: a settings path with an empty step threw from the JSON pointer code.
+    for (const char* path : {"volumes][.medium.phase_g", "volumes[0]..edge_fade", "volumes[]", "camera."}) {
+        Result<void> r = doc.apply(Action{"set", {path, "0.5"}});
+        ASSERT_FALSE(r.ok()) << path;
+        EXPECT_EQ(r.error().message.find('\n'), std::string::npos);
+    }
+    // Also from fuzzing: a verb holding a space or a quote is written back quoted, as one word.
+    for (const char* line : {"dup\"key \\\"lamp\\\"\" x", "\"#not a comment\" 1"}) {
+        Result<Action> a = parseAction(line);
+        ASSERT_TRUE(a.ok()) << line;
+        Result<Action> back = parseAction(formatAction(a.value()));
+        ASSERT_TRUE(back.ok()) << formatAction(a.value());
+        EXPECT_EQ(back.value().verb, a.value().verb) << formatAction(a.value());
+        EXPECT_EQ(back.value().args, a.value().args) << formatAction(a.value());
+    }
+    EXPECT_EQ(doc.scene().volumes[0].name, "brume \xC3\xA9t\xC3\xA9 \xE2\x9B\x85");
+}

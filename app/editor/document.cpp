@@ -43,7 +43,11 @@ Result<json::json_pointer> pointerOf(const std::string& path) {
         else p += c;
     }
     if (path.empty()) return Error{"The action \"set\" needs a settings path."};
-    return json::json_pointer("/" + p);
+    // An empty step ("a..b", "x[]", "volumes][") names nothing (found by fuzzing: it reached the JSON
+    // pointer code, which threw).
+    const std::string full = "/" + p;
+    if (full.back() == '/' || full.find("//") != std::string::npos) return Error{"\"" + path + "\" is not a settings path."};
+    return json::json_pointer(full);
 }
 
 // The JSON value of the words typed after the path, shaped like the value it replaces.
@@ -82,6 +86,35 @@ Result<std::string> collectionOf(const std::string& kind) {
     if (kind == "light") return std::string("lights");
     if (kind == "geometry") return std::string("geometry");
     return Error{"\"" + kind + "\" is not a kind of object: use volume, light or geometry."};
+}
+
+// Whether `s` is well-formed UTF-8 (Unicode Table 3-7: no overlong forms, surrogates or values past
+// U+10FFFF). Scene text goes through JSON, whose writer throws on anything else.
+bool isUtf8(const std::string& s) {
+    size_t i = 0;
+    const size_t n = s.size();
+    auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+    while (i < n) {
+        const unsigned char c = byte(i);
+        int len = 0;
+        unsigned char lo = 0x80, hi = 0xBF;
+        if (c < 0x80) len = 1;
+        else if (c >= 0xC2 && c <= 0xDF) len = 2;
+        else if (c == 0xE0) len = 3, lo = 0xA0;
+        else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) len = 3;
+        else if (c == 0xED) len = 3, hi = 0x9F;
+        else if (c == 0xF0) len = 4, lo = 0x90;
+        else if (c >= 0xF1 && c <= 0xF3) len = 4;
+        else if (c == 0xF4) len = 4, hi = 0x8F;
+        else return false;
+        if (i + static_cast<size_t>(len) > n) return false;
+        for (int k = 1; k < len; ++k) {
+            const unsigned char b = byte(i + static_cast<size_t>(k));
+            if (k == 1 ? (b < lo || b > hi) : (b < 0x80 || b > 0xBF)) return false;
+        }
+        i += static_cast<size_t>(len);
+    }
+    return true;
 }
 
 Result<Scene> parseEdited(const json& j, const Scene& current) {
@@ -140,6 +173,10 @@ bool Document::isDocumentVerb(const std::string& verb) {
 }
 
 Result<void> Document::apply(const Action& a) {
+    // Found by fuzzing (tests/fuzz/fuzz_action): a byte that is not UTF-8 in a path or a name made the
+    // JSON writer throw, and the editor end on an uncaught exception.
+    for (const std::string& w : a.args)
+        if (!isUtf8(w)) return Error{a.verb + ": an argument is not valid UTF-8 text."};
     if (a.verb == "add") return add(a.args);
     if (a.verb == "delete" || a.verb == "duplicate") return removeOrDuplicate(a.verb, a.args);
     if (a.verb == "rename") return rename(a.args);
@@ -307,13 +344,17 @@ Result<void> Document::set(const std::vector<std::string>& a) {
     Result<json::json_pointer> ptr = pointerOf(a[0]);
     if (!ptr) return ptr.error();
     json j = json::parse(sceneToJson(scene_));
-    const json::json_pointer parent = ptr.value().parent_pointer();
-    if (!j.contains(parent) || !j.at(parent).is_object())
+    try {
+        const json::json_pointer parent = ptr.value().parent_pointer();
+        if (!j.contains(parent) || !j.at(parent).is_object())
+            return Error{"edit: " + a[0] + ": there is no such setting in this scene."};
+        const json* old = j.contains(ptr.value()) ? &j.at(ptr.value()) : nullptr;
+        Result<json> v = valueFromWords(a[0], {a.begin() + 1, a.end()}, old);
+        if (!v) return Error{"edit: " + v.error().message};
+        j[ptr.value()] = v.value();
+    } catch (const json::exception&) {  // a path the JSON pointer code refuses: a sentence, never a crash
         return Error{"edit: " + a[0] + ": there is no such setting in this scene."};
-    const json* old = j.contains(ptr.value()) ? &j.at(ptr.value()) : nullptr;
-    Result<json> v = valueFromWords(a[0], {a.begin() + 1, a.end()}, old);
-    if (!v) return Error{"edit: " + v.error().message};
-    j[ptr.value()] = v.value();
+    }
     Result<Scene> next = parseEdited(j, scene_);
     if (!next) return next.error();
     commit(std::move(next.value()));
@@ -347,6 +388,7 @@ Result<void> Document::save(const std::vector<std::string>& a) {
 }
 
 Result<Action> parseAction(const std::string& line) {
+    if (!isUtf8(line)) return Error{"The action line is not valid UTF-8 text."};
     Action a;
     std::vector<std::string> words;
     std::string cur;
@@ -378,17 +420,17 @@ Result<Action> parseAction(const std::string& line) {
 }
 
 std::string formatAction(const Action& action) {
-    std::string line = action.verb;
-    for (const std::string& w : action.args) {
+    // The verb too (fuzzing found `dup"key \"lamp\""`: one word with a space, written back as two).
+    auto word = [](const std::string& w) {
         const bool plain = !w.empty() && w.find_first_of(" \t\"\\#") == std::string::npos;
-        if (plain) {
-            line += " " + w;
-            continue;
-        }
-        line += " \"";
-        for (char c : w) line += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-        line += "\"";
-    }
+        if (plain) return w;
+        std::string q = "\"";
+        for (char c : w) q += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+        return q + "\"";
+    };
+    if (action.verb.empty() && action.args.empty()) return "";
+    std::string line = word(action.verb);
+    for (const std::string& w : action.args) line += " " + word(w);
     return line;
 }
 
