@@ -14,7 +14,7 @@ using glm::vec3;
 constexpr float kSlack = 1.0e-4f;
 
 bool reachesNothing(const shd::LightData& l) {
-    return l.intensity.w <= 0.0f || vec3(l.intensity) == vec3(0.0f);
+    return l.fogScale <= 0.0f || vec3(l.intensity) == vec3(0.0f);
 }
 
 // Cone (apex, unit axis, outer half-angle) against a sphere (centre c, radius r): Wronski's test,

@@ -118,7 +118,8 @@ shd::LightData compileLight(const Light& l) {
     const glm::vec3 dir = len > 0.0f ? l.direction / len : glm::vec3(0, -1, 0);
     d.positionRange = glm::vec4(l.position, l.range);
     d.direction = glm::vec4(dir, 0.0f);
-    d.intensity = glm::vec4(l.color * l.intensity, l.fog_scale);
+    d.intensity = l.color * l.intensity;
+    d.fogScale = l.fog_scale;
     d.spot = glm::vec4(std::cos(glm::radians(l.outer_deg)), std::cos(glm::radians(l.inner_deg)), 0.0f, 0.0f);
     switch (l.type) {
         case LightType::Directional: d.kind.x = shd::LIGHT_DIRECTIONAL; break;
@@ -139,7 +140,7 @@ CompiledScene compileScene(const Scene& scene) {
     size_t gridOffset = 0;
     for (const Volume& v : scene.volumes) {
         shd::VolumeData d = compileVolume(v);
-        const bool sampled = d.kind.z != 0;
+        const bool sampled = shd::vdbHasGrid(d);
         if (sampled) {
             d.kind.y = static_cast<int>(gridOffset);
             gridOffset += v.density->size();
@@ -161,7 +162,7 @@ CompiledScene compileScene(const Scene& scene) {
         shd::LightData d = compileLight(l);
         // Each point or spot light with shadows owns the next slot of the local shadow map array
         // (shared/local_shadow.h), whatever the quality, so slots follow the scene alone.
-        if (d.kind.x != shd::LIGHT_DIRECTIONAL && d.kind.y != 0) d.kind.z = ++localShadowSlots;
+        if (d.kind.x != shd::LIGHT_DIRECTIONAL && shd::lightCastsShadows(d)) d.kind.z = ++localShadowSlots;
         cs.lights.push_back(d);
     }
     return cs;
@@ -173,7 +174,7 @@ float plainVolumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
     if (!cs.grids[i]) return 0.0f;
     const glm::vec3 indexPos = shd::vdbIndexPos(v, p);
     // Occupancy culling (kind.w: the cells' offset, 0 = off): the GPU's vdbDensity skips the same walks.
-    if (v.kind.w != 0 && !cs.grids[i]->occupied(indexPos)) return 0.0f;
+    if (shd::vdbOccupancyOffset(v) != 0 && !cs.grids[i]->occupied(indexPos)) return 0.0f;
     return v.params.x * cs.grids[i]->sampleIndex(indexPos);
 }
 

@@ -209,12 +209,12 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     // Layers of lights that touch nothing shaded are skipped: nobody reads them.
     const LightReach reach = buildLightReach(cs, frame, clusters, request.lightCulling);
-    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadows.y, threads, &reach.shadowVolume);
+    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadowReduction, threads, &reach.shadowVolume);
     v.overfullClusters = clusters.overfullClusters;
     const GeometrySet geometry(scene.geometry);
     const SunShadowMap& sun =
         history.sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality), threads);
-    const LocalShadowMaps& local = history.localShadows.get(cs, scene.geometry, frame.shadows.w, threads);
+    const LocalShadowMaps& local = history.localShadows.get(cs, scene.geometry, frame.localShadowTexels, threads);
 
     // Per-row counts summed afterwards keep the totals independent of scheduling.
     std::vector<size_t> litPerRow(static_cast<size_t>(rows), 0);

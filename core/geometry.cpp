@@ -99,7 +99,7 @@ glm::vec3 shadeSurface(const CompiledScene& cs, const GeometrySet& geometry, con
         const shd::LightSample s = shd::evalLight(l, hit.position);
         glm::vec3 direct = shd::lambert(hit.albedo, hit.normal, s);
         if (direct == glm::vec3(0.0f)) continue;
-        if (geometryShadows && l.kind.y != 0 && geometry.occluded(origin, s.toLight, s.distance)) continue;
+        if (geometryShadows && shd::lightCastsShadows(l) && geometry.occluded(origin, s.toLight, s.distance)) continue;
         if (fogTransmittance) direct *= (*fogTransmittance)(static_cast<int>(i), origin, s.toLight, s.distance);
         radiance += direct;
     }

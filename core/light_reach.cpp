@@ -50,7 +50,7 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
         const shd::LightData& l = cs.lights[i];
         const bool surface = !culling || lightMayReachFrustum(l, frame, frame.projection.z, frame.projection.w);
         if (surface) out.surfaceLights.push_back(static_cast<int>(i));
-        if (!shd::fogShadowsLight(l, frame.shadows.x)) continue;
+        if (!shd::fogShadowsLight(l, frame.localFogShadows)) continue;
         // Surfaces read the volume inside the froxel grid only: from the camera to the froxel far.
         const bool read = listed[i] || (surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
         out.shadowVolume[i] = !culling || read ? 1 : 0;

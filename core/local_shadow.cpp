@@ -38,7 +38,7 @@ int localShadowMapResolution(Quality q) {
 
 int localShadowSlots(const CompiledScene& cs) {
     int slots = 0;
-    for (const shd::LightData& l : cs.lights) slots = std::max(slots, l.kind.z);
+    for (const shd::LightData& l : cs.lights) slots = std::max(slots, shd::lightShadowSlot(l) + 1);
     return slots;
 }
 
@@ -47,7 +47,7 @@ void buildLocalShadowMap(const shd::LightData& light, const GeometrySet& geometr
     const int n = maps.resolution;
     const int faces = shd::localShadowFaceCount(light);
     const glm::vec3 origin(light.positionRange);
-    const size_t base = static_cast<size_t>(light.kind.z - 1) * slotSize(n);
+    const size_t base = static_cast<size_t>(shd::lightShadowSlot(light)) * slotSize(n);
     parallelFor(faces * n, threads, [&](int row) {
         const int f = row / n, j = row % n;
         const shd::LocalShadowFace face = shd::localShadowFace(light, f);
@@ -95,9 +95,9 @@ const LocalShadowMaps& LocalShadowCache::get(const CompiledScene& cs, const std:
     const GeometrySet set(geometry);
     for (const shd::LightData& l : cs.lights) {
         if (!shd::localShadowMapped(l, resolution)) continue;
-        shd::LightData& kept = lights_[static_cast<size_t>(l.kind.z - 1)];
+        shd::LightData& kept = lights_[static_cast<size_t>(shd::lightShadowSlot(l))];
         if (!resized && sameMapInputs(kept, l)) continue;
-        std::fill_n(maps_.depth.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(l.kind.z - 1) * slotSize(resolution)),
+        std::fill_n(maps_.depth.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(shd::lightShadowSlot(l)) * slotSize(resolution)),
                     slotSize(resolution), shd::BRUME_HUGE);
         buildLocalShadowMap(l, set, maps_, threads);
         kept = l;

@@ -404,7 +404,7 @@ private:
         uint32_t mask = 0;
         for (size_t i = 0; i < std::min<size_t>(cs_.lights.size(), 32); ++i) {
             const shd::LightData& l = cs_.lights[i];
-            if (l.kind.y == 0 || l.intensity.w <= 0.0f) continue;
+            if (!shd::lightCastsShadows(l) || l.fogScale <= 0.0f) continue;
             const shd::LightSample s = shd::evalLight(l, p);
             if (geo_.occluded(p, s.toLight, s.distance)) mask |= 1u << i;
         }
@@ -417,7 +417,7 @@ private:
         double h = std::max(static_cast<double>(params_.near_step), static_cast<double>(params_.rel_step) * t);
         if (sigmaPrev > 0.0f) h = std::min(h, static_cast<double>(params_.tau_step / sigmaPrev));
         for (const shd::LightData& l : cs_.lights) {
-            if (l.kind.x == shd::LIGHT_DIRECTIONAL || l.intensity.w <= 0.0f) continue;
+            if (l.kind.x == shd::LIGHT_DIRECTIONAL || l.fogScale <= 0.0f) continue;
             const float dist = std::max(glm::length(glm::vec3(l.positionRange) - p), shd::LIGHT_MIN_DISTANCE);
             h = std::min(h, static_cast<double>(params_.light_step * dist));
         }
@@ -465,10 +465,10 @@ private:
     glm::vec3 inScatter(glm::vec3 p, glm::vec3 viewDir, float g) const {
         glm::vec3 sum(0.0f);
         for (const shd::LightData& l : cs_.lights) {
-            if (l.intensity.w <= 0.0f) continue;
+            if (l.fogScale <= 0.0f) continue;
             const shd::LightSample s = shd::evalLight(l, p);
             if (maxComponent(s.irradiance) <= 0.0f) continue;
-            if (l.kind.y != 0 && geo_.occluded(p, s.toLight, s.distance)) continue;
+            if (shd::lightCastsShadows(l) && geo_.occluded(p, s.toLight, s.distance)) continue;
             sum += shd::inScatterPerSigmaS(l, s, viewDir, g) * fogTransmittance(cs_, p, s.toLight, s.distance);
         }
         return sum;

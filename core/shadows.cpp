@@ -18,9 +18,9 @@ bool localLightFogShadows(Quality) { return true; }
 int shadowVolumeReduction(Quality q) { return q == Quality::Low ? 4 : 2; }
 
 void applyShadowSettings(shd::FrameUniforms& frame, const RenderRequest& request) {
-    frame.shadows.x = localLightFogShadows(request.quality) ? 1 : 0;
-    frame.shadows.y = request.shadowReduction > 0 ? request.shadowReduction : shadowVolumeReduction(request.quality);
-    frame.shadows.w = localShadowMapResolution(request.quality);
+    frame.localFogShadows = localLightFogShadows(request.quality) ? 1 : 0;
+    frame.shadowReduction = request.shadowReduction > 0 ? request.shadowReduction : shadowVolumeReduction(request.quality);
+    frame.localShadowTexels = localShadowMapResolution(request.quality);
 }
 
 glm::vec3 lightFogTransmittance(const CompiledScene& cs, const shd::LightData& l, glm::vec3 p, glm::vec3 toLight,
@@ -48,7 +48,7 @@ shd::ShadowBlend blendShadowCells(const ShadowVolume& sv, int light, const shd::
 // Light `light`'s vdb transmittance at k (fog_shadow.glsl vdbShadowBlend): never evaluated exactly
 // outside the shadow volume, so it multiplies whichever analytic transmittance the caller took.
 glm::vec3 vdbLayerBlend(const ShadowVolume& sv, const shd::FrameUniforms& frame, int light, const shd::ShadowLookup& k) {
-    if (frame.vdb.x <= 0) return glm::vec3(1.0f);
+    if (frame.vdbShadowSamples <= 0) return glm::vec3(1.0f);
     return shd::vdbShadowTransmittance(blendShadowCells(sv, shd::vdbShadowLayer(light, frame.counts.w), k).transmittance);
 }
 
@@ -61,23 +61,23 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
     const glm::ivec3 froxelDims = glm::ivec3(frame.froxelDims);
     sv.dims = shd::shadowVolumeDims(froxelDims, reduction);
     const int lights = static_cast<int>(cs.lights.size());
-    // With vdb shadows on (frame.vdb.x), a second layer per light after the analytic ones.
-    const size_t layerCount = cs.lights.size() * (frame.vdb.x > 0 ? 2 : 1);
+    // With vdb shadows on (frame.vdbShadowSamples), a second layer per light after the analytic ones.
+    const size_t layerCount = cs.lights.size() * (frame.vdbShadowSamples > 0 ? 2 : 1);
     sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * layerCount,
                             glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
     // One row of cells (light, z, y) per item.
     parallelFor(lights * sv.dims.z * sv.dims.y, threads, [&](int r) {
         const int y = r % sv.dims.y, z = (r / sv.dims.y) % sv.dims.z, light = r / (sv.dims.y * sv.dims.z);
         const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
-        if (!shd::fogShadowsLight(l, frame.shadows.x)) return;
+        if (!shd::fogShadowsLight(l, frame.localFogShadows)) return;
         if (layers && (*layers)[static_cast<size_t>(light)] == 0) return;
         for (int x = 0; x < sv.dims.x; ++x) {
             const glm::ivec3 froxel = shd::shadowCellFroxel(glm::ivec3(x, y, z), froxelDims, reduction);
             const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(froxel) + glm::vec3(frame.jitter), frame);
             const shd::LightSample ls = shd::evalLight(l, p);
-            const glm::vec3 t = lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, frame.shadows.x);
+            const glm::vec3 t = lightFogTransmittance(cs, l, p, ls.toLight, ls.distance, frame.localFogShadows);
             sv.transmittance[shadowIndex(sv.dims, light, glm::ivec3(x, y, z))] = glm::vec4(t, 0.0f);
-            if (frame.vdb.x <= 0) continue;
+            if (frame.vdbShadowSamples <= 0) continue;
             const glm::vec3 tau = vdbFogOpticalDepth(cs, frame, l, p, ls.toLight, ls.distance);
             sv.transmittance[shadowIndex(sv.dims, shd::vdbShadowLayer(light, lights), glm::ivec3(x, y, z))] =
                 glm::vec4(tau, 0.0f);
@@ -90,17 +90,17 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
                                  int light, const shd::ShadowLookup& k, glm::vec3 p, glm::vec3 toLight,
                                  float distance) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
-    if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
+    if (!shd::fogShadowsLight(l, frame.localFogShadows)) return glm::vec3(1.0f);
     const glm::vec3 vdb = vdbLayerBlend(sv, frame, light, k);
     const shd::ShadowBlend b = blendShadowCells(sv, light, k);
     if (b.trusted) return b.transmittance * vdb;
-    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x) * vdb;
+    return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
 }
 
 glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
                                   int light, glm::vec3 p, glm::vec3 toLight, float distance) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
-    if (!shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(1.0f);
+    if (!shd::fogShadowsLight(l, frame.localFogShadows)) return glm::vec3(1.0f);
     const shd::SurfaceShadowLookup s = shd::shadowLookupAt(glm::vec3(shd::froxelCoordFromWorld(p, frame)), frame, sv.reduction);
     // The vdb layer at the clamped lookup even outside the grid's sample points (the image borders'
     // half froxel, past the froxel far): there is no exact form to fall back on.
@@ -109,7 +109,7 @@ glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& s
         const shd::ShadowBlend b = blendShadowCells(sv, light, s.k);
         if (b.trusted) return b.transmittance * vdb;
     }
-    return lightFogTransmittance(cs, l, p, toLight, distance, frame.shadows.x) * vdb;
+    return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
 }
 
 }  // namespace brume

@@ -13,7 +13,7 @@
 namespace brume {
 
 // Whether the froxel renderers evaluate fog transmittance toward point and spot lights at this
-// quality (FrameUniforms.shadows.x); the sun's is always evaluated. On at every quality today (a
+// quality (FrameUniforms.localFogShadows); the sun's is always evaluated. On at every quality today (a
 // light must not shine through fog it cannot cross); kept as a switch for measurements.
 bool localLightFogShadows(Quality q);
 
@@ -34,7 +34,7 @@ void applyShadowSettings(shd::FrameUniforms& frame, const RenderRequest& request
 // Each shadowing light's transmittance on the reduced grid, light after light: index
 // ((light * d.z + z) * d.y + y) * d.x + x, d = shd::shadowVolumeDims (the GPU's image stacks the
 // lights along z the same way). Lights shd::fogShadowsLight skips hold 1. With vdb shadows on
-// (frame.vdb.x > 0, core/vdb_shadow.h) layers lights..2*lights-1 follow with each light's vdb
+// (frame.vdbShadowSamples > 0, core/vdb_shadow.h) layers lights..2*lights-1 follow with each light's vdb
 // transmittance (shd::vdbShadowLayer), which froxelFogTransmittance and surfaceFogTransmittance
 // multiply in.
 struct ShadowVolume {

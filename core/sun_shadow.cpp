@@ -19,20 +19,20 @@ int sunShadowMapResolution(Quality q) { return q == Quality::Low ? 512 : 1024; }
 int sunShadowLight(const CompiledScene& cs) {
     for (size_t i = 0; i < cs.lights.size(); ++i) {
         const shd::LightData& l = cs.lights[i];
-        if (l.kind.x == shd::LIGHT_DIRECTIONAL && l.kind.y != 0) return static_cast<int>(i);
+        if (l.kind.x == shd::LIGHT_DIRECTIONAL && shd::lightCastsShadows(l)) return static_cast<int>(i);
     }
     return -1;
 }
 
 void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs) {
-    frame.shadows.z = sunShadowLight(cs) + 1;
+    frame.sunShadowLight = sunShadowLight(cs) + 1;
 }
 
 SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
                                int resolution, int threads) {
     SunShadowMap map;
-    if (frame.shadows.z <= 0) return map;
-    map.fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.shadows.z - 1)], resolution);
+    if (frame.sunShadowLight <= 0) return map;
+    map.fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.sunShadowLight - 1)], resolution);
     // Two layers: surfaces' second depths, then the froxels' (shared/sun_shadow.h).
     map.depth.assign(2 * static_cast<size_t>(resolution) * static_cast<size_t>(resolution), shd::BRUME_HUGE);
     const glm::vec3 dir(map.fit.dir);
@@ -59,9 +59,9 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
 const SunShadowMap& SunShadowCache::get(const CompiledScene& cs, const std::vector<Geometry>& geometry,
                                         const shd::FrameUniforms& frame, int resolution, int threads) {
     shd::SunShadowFit fit{};
-    if (frame.shadows.z > 0)
-        fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.shadows.z - 1)], resolution);
-    const bool mapped = frame.shadows.z > 0;
+    if (frame.sunShadowLight > 0)
+        fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.sunShadowLight - 1)], resolution);
+    const bool mapped = frame.sunShadowLight > 0;
     const bool same = valid_ && geometry == geometry_ && mapped == !map_.depth.empty() &&
                       (!mapped || std::memcmp(&fit, &map_.fit, sizeof(fit)) == 0);
     if (!same) {

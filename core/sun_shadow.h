@@ -22,10 +22,10 @@ struct SunShadowMap {
     std::vector<float> depth;  // 2 layers of N x N, row-major (shd::sunShadowIndex, shd::sunShadowFroxelIndex); empty: none
 };
 
-// Sets frame.shadows.z (the mapped light) for the scene: call after applyShadowSettings.
+// Sets frame.sunShadowLight (the mapped light) for the scene: call after applyShadowSettings.
 void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs);
 
-// The map for frame (empty when frame.shadows.z is 0). Independent of the frame's jitter.
+// The map for frame (empty when frame.sunShadowLight is 0). Independent of the frame's jitter.
 SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
                                int resolution, int threads);
 

@@ -9,7 +9,7 @@ int vdbShadowSamplesPerVoxel(Quality q) { return q == Quality::Ultra ? 2 : 1; }
 void applyVdbShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs, const RenderRequest& request) {
     bool anyGrid = false;
     for (const DensityGridPtr& g : cs.grids) anyGrid = anyGrid || g != nullptr;
-    frame.vdb.x = anyGrid && request.vdbShadows ? vdbShadowSamplesPerVoxel(request.quality) : 0;
+    frame.vdbShadowSamples = anyGrid && request.vdbShadows ? vdbShadowSamplesPerVoxel(request.quality) : 0;
 }
 
 void applyVdbCullingSettings(CompiledScene& cs, const RenderRequest& request) {
@@ -20,11 +20,11 @@ void applyVdbCullingSettings(CompiledScene& cs, const RenderRequest& request) {
 
 glm::vec3 vdbFogOpticalDepth(const CompiledScene& cs, const shd::FrameUniforms& frame, const shd::LightData& l,
                              glm::vec3 p, glm::vec3 toLight, float distance) {
-    if (frame.vdb.x <= 0 || !shd::fogShadowsLight(l, frame.shadows.x)) return glm::vec3(0.0f);
+    if (frame.vdbShadowSamples <= 0 || !shd::fogShadowsLight(l, frame.localFogShadows)) return glm::vec3(0.0f);
     glm::vec3 tau(0.0f);
     for (size_t i = 0; i < cs.volumes.size(); ++i) {
         const shd::VolumeData& v = cs.volumes[i];
-        const shd::VdbShadowMarch m = shd::vdbShadowMarch(v, p, toLight, distance, frame.vdb.x);
+        const shd::VdbShadowMarch m = shd::vdbShadowMarch(v, p, toLight, distance, frame.vdbShadowSamples);
         float sum = 0.0f;
         for (int s = 0; s < m.count; ++s) sum += plainVolumeDensity(cs, i, m.start + m.step * static_cast<float>(s));
         tau += shd::vdbShadowOpticalDepth(v, sum, m.stepLength);

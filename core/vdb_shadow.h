@@ -11,11 +11,11 @@
 
 namespace brume {
 
-// Samples per shortest voxel edge along a shadow ray (FrameUniforms.vdb.x): 1 in low, medium and
+// Samples per shortest voxel edge along a shadow ray (FrameUniforms.vdbShadowSamples): 1 in low, medium and
 // high, 2 in ultra. Measured trade in docs/shadows.md, "VDB volumes".
 int vdbShadowSamplesPerVoxel(Quality q);
 
-// Sets frame.vdb.x: the quality's samples per voxel when the scene has a vdb volume with a grid
+// Sets frame.vdbShadowSamples: the quality's samples per voxel when the scene has a vdb volume with a grid
 // and request.vdbShadows is on, else 0 (no vdb layer in the transmittance volume). Call after
 // applyShadowSettings, in both froxel renderers.
 void applyVdbShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs, const RenderRequest& request);
@@ -26,7 +26,7 @@ void applyVdbShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs, 
 void applyVdbCullingSettings(CompiledScene& cs, const RenderRequest& request);
 
 // Optical depth of the vdb volumes alone from p along unit toLight over `distance`, marched at
-// frame.vdb.x samples per voxel (what the transmittance volume's vdb layer holds); 0 when that is
+// frame.vdbShadowSamples samples per voxel (what the transmittance volume's vdb layer holds); 0 when that is
 // 0 or shd::fogShadowsLight skips the light.
 glm::vec3 vdbFogOpticalDepth(const CompiledScene& cs, const shd::FrameUniforms& frame, const shd::LightData& l,
                              glm::vec3 p, glm::vec3 toLight, float distance);

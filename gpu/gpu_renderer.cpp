@@ -149,9 +149,9 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
                                                 request.threads);
     const size_t sunBytes = sun.depth.size() * sizeof(float);
-    const LocalShadowMaps& local = s_->localShadows.get(cs, scene.geometry, frame.shadows.w, request.threads);
+    const LocalShadowMaps& local = s_->localShadows.get(cs, scene.geometry, frame.localShadowTexels, request.threads);
     const size_t localBytes = local.depth.size() * sizeof(float);
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadows.y, sunBytes,
+    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadowReduction, sunBytes,
                           localBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
@@ -164,7 +164,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
-    r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadows.y).z * reach[1 + cs.lights.size()];
+    r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadowReduction).z * reach[1 + cs.lights.size()];
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
     std::memcpy(r[BufferId::sunShadowMap].mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)

@@ -1,7 +1,7 @@
 // The GPU's loop over volumes around the shared closed forms of shared/shadows.h (core:
 // lightFogTransmittance): the fog's transmittance from p toward light l.
 vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(l, frame.shadows.x)) return vec3(1.0f);
+    if (!fogShadowsLight(l, frame.localFogShadows)) return vec3(1.0f);
     vec3 tau = vec3(0.0f);
     for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumes[i], p, toLight, distance);
     return exp(-tau);
@@ -22,7 +22,7 @@ ShadowBlend blendShadowCells(int light, ShadowLookup k) {
 // Light `light`'s vdb layer blended at k (core: vdbLayerBlend; shared/vdb_shadow.h): 1 without vdb
 // shadows. No exact fallback: only the shadow volume pass marches grids.
 vec3 vdbShadowBlend(int light, ShadowLookup k) {
-    if (frame.vdb.x <= 0) return vec3(1.0f);
+    if (frame.vdbShadowSamples <= 0) return vec3(1.0f);
     return vdbShadowTransmittance(blendShadowCells(vdbShadowLayer(light, frame.counts.w), k).transmittance);
 }
 
@@ -30,7 +30,7 @@ vec3 vdbShadowBlend(int light, ShadowLookup k) {
 // blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
 // k: shadowLookup of the froxel, computed once for all lights.
 vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, k);
     ShadowBlend b = blendShadowCells(light, k);
     if (b.trusted) return b.transmittance * vdb;
@@ -40,7 +40,7 @@ vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, flo
 // Surfaces (core: surfaceFogTransmittance): the volume inside the grid, exact outside and at edges.
 // s: shadowLookupAt of p, computed once for all lights.
 vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], frame.shadows.x)) return vec3(1.0f);
+    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
     if (s.inside) {
         ShadowBlend b = blendShadowCells(light, s.k);

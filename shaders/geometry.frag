@@ -24,7 +24,7 @@ void main() {
     // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
     vec3 m = abs(worldPos);
     vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
-    SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadows.y);
+    SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadowReduction);
     // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
     int reach = lightReachOffset(frame.froxelDims.xyz);
     int count = lightClusters[reach];

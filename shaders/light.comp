@@ -26,7 +26,7 @@ void main() {
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
-    ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadows.y);
+    ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadowReduction);
     float nearest = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
     // Only the lights of this froxel's cluster (clusters.h), in the CPU's order.
     int record = clusterRecord(id, frame.froxelDims.xyz);

@@ -1,7 +1,7 @@
 // Visibility of light i at p through its point/spot shadow map (core: localShadowVisibility): 1 for
 // unmapped lights and outside a spot's face.
 float localShadowVisibility(int i, vec3 p) {
-    int n = frame.shadows.w;
+    int n = frame.localShadowTexels;
     if (!localShadowMapped(lights[i], n)) return 1.0f;
     LocalShadowLookup k = localShadowLookup(lights[i], n, p);
     if (!k.inside) return 1.0f;

@@ -10,7 +10,7 @@ layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
-    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadows.y);
+    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadowReduction);
     // Only the layers some reader needs, listed by the light reach (core/light_reach.h); the others
     // are never read.
     int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;
@@ -18,7 +18,7 @@ void main() {
     if (id.x >= cells.x || id.y >= cells.y || k >= lightClusters[layers]) return;
     int light = lightClusters[layers + 1 + k];
     ivec3 cell = ivec3(id.xy, id.z - k * cells.z);
-    ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadows.y);
+    ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
     LightSample ls = evalLight(lights[light], p);
     shadowTransmittance[shadowVolumeIndex(cells, light, cell)] =

@@ -1,5 +1,5 @@
 // Shadow volume pass for scenes with vdb grids (core: computeShadowVolume): shadow_volume.comp's
-// analytic layer plus, when vdb shadows are on (frame.vdb.x), each light's vdb layer (optical depth)
+// analytic layer plus, when vdb shadows are on (frame.vdbShadowSamples), each light's vdb layer (optical depth)
 // (shared/vdb_shadow.h). A variant for the same reason as voxelize_vdb.comp: the inlined PNanoVDB
 // walk would slow the pass for every scene.
 #version 450
@@ -13,19 +13,19 @@ layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
-    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadows.y);
+    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadowReduction);
     // The same layers as shadow_volume.comp: only those the light reach lists.
     int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;
     int k = id.z / cells.z;
     if (id.x >= cells.x || id.y >= cells.y || k >= lightClusters[layers]) return;
     int light = lightClusters[layers + 1 + k];
     ivec3 cell = ivec3(id.xy, id.z - k * cells.z);
-    ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadows.y);
+    ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
     LightSample ls = evalLight(lights[light], p);
     shadowTransmittance[shadowVolumeIndex(cells, light, cell)] =
         vec4(lightFogTransmittance(lights[light], p, ls.toLight, ls.distance), 0.0f);
-    if (frame.vdb.x <= 0) return;
+    if (frame.vdbShadowSamples <= 0) return;
     shadowTransmittance[shadowVolumeIndex(cells, vdbShadowLayer(light, frame.counts.w), cell)] =
         vec4(vdbFogOpticalDepth(lights[light], p, ls.toLight, ls.distance), 0.0f);
 }

@@ -32,7 +32,7 @@ float vdbVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk)
 // Whether the trilinear cell with lower corner `base` may be non-zero (core: DensityGrid::occupied;
 // shared/vdb.h vdbOccupancyWord), read from the cells after the grid (VolumeData.kind.w).
 bool vdbOccupied(VolumeData v, ivec3 base) {
-    uint h = uint(v.kind.y + v.kind.w) / 4u;
+    uint h = uint(vdbGridOffset(v) + vdbOccupancyOffset(v)) / 4u;
     ivec3 origin = ivec3(int(vdbGridWords[h]), int(vdbGridWords[h + 1u]), int(vdbGridWords[h + 2u]));
     ivec3 dims = ivec3(int(vdbGridWords[h + 4u]), int(vdbGridWords[h + 5u]), int(vdbGridWords[h + 6u]));
     int w = vdbOccupancyWord(base, origin, dims);
@@ -42,11 +42,11 @@ bool vdbOccupied(VolumeData v, ivec3 base) {
 // Density of vdb volume v at a world position, without bounds test (core: volumeDensity). Cells the
 // occupancy grid marks empty return 0 without walking the tree.
 float vdbDensity(VolumeData v, vec3 worldPos) {
-    if (v.kind.z == 0) return 0.0f;
-    if (v.kind.w != 0 && !vdbOccupied(v, vdbCell(vdbIndexPos(v, worldPos)).base)) return 0.0f;
+    if (!vdbHasGrid(v)) return 0.0f;
+    if (vdbOccupancyOffset(v) != 0 && !vdbOccupied(v, vdbCell(vdbIndexPos(v, worldPos)).base)) return 0.0f;
     pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // GLSL's PNanoVDB reads the global vdbGridWords
     pnanovdb_grid_handle_t grid;
-    grid.address.byte_offset = uint(v.kind.y);
+    grid.address.byte_offset = uint(vdbGridOffset(v));
     pnanovdb_readaccessor_t acc;
     pnanovdb_readaccessor_init(acc, pnanovdb_tree_get_root(buf, pnanovdb_grid_get_tree(buf, grid)));
     VdbCell c = vdbCell(vdbIndexPos(v, worldPos));

@@ -232,7 +232,7 @@ namespace {
 // Largest |T_blend - T_exact| over every froxel of a grid and every light, with the volume's raw
 // trilinear blend (the exact fallback off): the interpolation error itself.
 float worstBlendError(const CompiledScene& cs, shd::FrameUniforms frame, int reduction) {
-    frame.shadows.y = reduction;
+    frame.shadowReduction = reduction;
     const ShadowVolume sv = computeShadowVolume(cs, frame, reduction, 2);
     const glm::ivec3 dims(frame.froxelDims);
     float worst = 0.0f;
@@ -278,7 +278,7 @@ TEST(FogShadowVolume, ConvergesToTheExactTransmittanceAsTheReductionGoesToOne) {
     const CompiledScene cs = compileScene(scene);
     const FroxelSettings fs = resolveFroxelSettings(scene, Quality::High);
     shd::FrameUniforms frame = makeFrameUniforms(scene, cs, 96, 54, fs);
-    frame.shadows.x = 1;
+    frame.localFogShadows = 1;
     const float e4 = worstBlendError(cs, frame, 4), e2 = worstBlendError(cs, frame, 2),
                 e1 = worstBlendError(cs, frame, 1);
     std::printf("worst |T_volume - T_exact| (raw blend): r=4 %.4f, r=2 %.4f, r=1 %.2e\n", e4, e2, e1);

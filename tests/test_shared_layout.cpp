@@ -100,8 +100,11 @@ void expectFrameUniforms(const std::string& p) {
     EXPECT_MEMBER(p, FrameUniforms, froxelDims);
     EXPECT_MEMBER(p, FrameUniforms, counts);
     EXPECT_MEMBER(p, FrameUniforms, jitter);
-    EXPECT_MEMBER(p, FrameUniforms, shadows);
-    EXPECT_MEMBER(p, FrameUniforms, vdb);
+    EXPECT_MEMBER(p, FrameUniforms, localFogShadows);
+    EXPECT_MEMBER(p, FrameUniforms, shadowReduction);
+    EXPECT_MEMBER(p, FrameUniforms, sunShadowLight);
+    EXPECT_MEMBER(p, FrameUniforms, localShadowTexels);
+    EXPECT_MEMBER(p, FrameUniforms, vdbShadowSamples);
     EXPECT_MEMBER(p, FrameUniforms, temporal);
 }
 
@@ -124,6 +127,7 @@ void expectLightData(const std::string& p) {
     EXPECT_MEMBER(p, LightData, positionRange);
     EXPECT_MEMBER(p, LightData, direction);
     EXPECT_MEMBER(p, LightData, intensity);
+    EXPECT_MEMBER(p, LightData, fogScale);
     EXPECT_MEMBER(p, LightData, spot);
     EXPECT_MEMBER(p, LightData, kind);
 }

@@ -40,7 +40,7 @@ TEST(SunShadowMap, MatchesExactOcclusionAwayFromEdges) {
     const FroxelSettings fs = resolveFroxelSettings(s, Quality::High);
     shd::FrameUniforms frame = makeFrameUniforms(s, cs, 160, 90, fs, glm::vec3(0.5f));
     applySunShadowSettings(frame, cs);
-    ASSERT_EQ(frame.shadows.z, 1);
+    ASSERT_EQ(frame.sunShadowLight, 1);
     const int n = sunShadowMapResolution(Quality::High);
     const SunShadowMap map = buildSunShadowMap(cs, geometry, frame, n, 2);
     const glm::vec3 toSun = -glm::vec3(cs.lights[0].direction);

@@ -84,7 +84,7 @@ BRUME_FUNC LightSample evalLight(LightData l, vec3 p) { return evalLightNear(l, 
 BRUME_FUNC vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, float g) {
     // The light travels along -toLight; scattered light leaves toward the camera, along -viewDir.
     float cosTheta = dot(-s.toLight, -viewDir);
-    return s.irradiance * (hgPhase(g, cosTheta) * l.intensity.w);
+    return s.irradiance * (hgPhase(g, cosTheta) * l.fogScale);
 }
 
 // Lambertian surface: radiance = albedo / pi * irradiance * cos.

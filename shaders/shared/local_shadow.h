@@ -3,7 +3,7 @@
 // (docs/shadows.md, "Point and spot shadow maps").
 //
 // Every mapped light owns one slot of LOCAL_SHADOW_FACES faces of N x N texels in one float array
-// (LightData.kind.z = slot + 1, 0 = unmapped; N = FrameUniforms.shadows.w, 0 = no maps). A point
+// (LightData.kind.z = slot + 1, 0 = unmapped; N = FrameUniforms.localShadowTexels, 0 = no maps). A point
 // light uses the six faces of a cube map; a spot light whose outer angle is below
 // LOCAL_SHADOW_SPOT_MAX_COS's angle uses face 0 only, a perspective map along its direction that
 // just covers the cone (wider spots use the cube, as point lights). Each texel holds the distance
@@ -37,7 +37,7 @@ struct LocalShadowFace {
 
 // Whether light l has a map (a point or spot light with shadows and a slot) at map resolution n.
 BRUME_FUNC bool localShadowMapped(LightData l, int n) {
-    return n > 0 && l.kind.x != LIGHT_DIRECTIONAL && l.kind.y != 0 && l.kind.z > 0;
+    return n > 0 && l.kind.x != LIGHT_DIRECTIONAL && lightCastsShadows(l) && lightShadowSlot(l) >= 0;
 }
 
 // 1: a spot's single perspective face; 6: a cube.
@@ -112,7 +112,7 @@ BRUME_FUNC LocalShadowLookup localShadowLookup(LightData l, int n, vec3 p) {
     vec2 lower = floor(t);
     k.texel = ivec2(lower);
     k.weights = t - lower;
-    k.base = ((l.kind.z - 1) * LOCAL_SHADOW_FACES + f) * n * n;
+    k.base = ((lightShadowSlot(l)) * LOCAL_SHADOW_FACES + f) * n * n;
     k.depth = dist - LOCAL_SHADOW_BIAS_TEXELS * 2.0f * face.tanHalf * z / float(n);
     return k;
 }

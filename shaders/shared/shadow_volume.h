@@ -1,5 +1,5 @@
 // The fog transmittance volume: each shadowing light's transmittance (shadows.h) evaluated exactly
-// on a grid that keeps every r-th froxel in each axis (r = FrameUniforms.shadows.y, per preset), then
+// on a grid that keeps every r-th froxel in each axis (r = FrameUniforms.shadowReduction, per preset), then
 // read back by the light pass with trilinear weights. Where the 8 cells around a froxel disagree by
 // more than SHADOW_VOLUME_SPREAD (a shadow edge crosses them), the interpolation is not trusted and
 // the froxel evaluates its transmittance exactly: smooth regions cost 1/r^3 of the closed forms,

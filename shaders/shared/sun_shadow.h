@@ -111,8 +111,8 @@ BRUME_FUNC float sunShadowPcf(SunShadowLookup k, float d00, float d10, float d01
     return mix(mix(v00, v10, k.weights.x), mix(v01, v11, k.weights.x), k.weights.y);
 }
 
-// Which light the map serves (FrameUniforms.shadows.z = light index + 1, 0 = none).
-BRUME_FUNC bool sunShadowMapped(FrameUniforms f, int light) { return f.shadows.z == light + 1; }
+// Which light the map serves (FrameUniforms.sunShadowLight = light index + 1, 0 = none).
+BRUME_FUNC bool sunShadowMapped(FrameUniforms f, int light) { return f.sunShadowLight == light + 1; }
 
 BRUME_NAMESPACE_END
 

@@ -54,12 +54,20 @@ struct VolumeData {
 struct LightData {
     vec4 positionRange;   // xyz: world position [m] (point, spot); w: range [m], 0 = no window
     vec4 direction;       // xyz: unit direction the light travels (directional, spot)
-    vec4 intensity;       // rgb: color * intensity (W/m^2 for directional, W/sr for point and spot);
-                          // a: fog_scale
+    vec3 intensity;       // color * intensity (W/m^2 for directional, W/sr for point and spot)
+    float fogScale;       // fog_scale: the light's in-scattering in fog is multiplied by it
     vec4 spot;            // x: cos(outer angle); y: cos(inner angle)
     ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1); z: point/spot: local shadow map slot + 1,
                           // 0 = none (local_shadow.h)
 };
+
+// The slots of LightData.kind and VolumeData.kind after x (the kind), by name, for C++ and GLSL
+// (compileScene writes them).
+BRUME_FUNC bool lightCastsShadows(LightData l) { return l.kind.y != 0; }
+BRUME_FUNC int lightShadowSlot(LightData l) { return l.kind.z - 1; }  // point/spot map slot, -1 = none
+BRUME_FUNC int vdbGridOffset(VolumeData v) { return v.kind.y; }      // byte offset in the grid buffer
+BRUME_FUNC bool vdbHasGrid(VolumeData v) { return v.kind.z != 0; }
+BRUME_FUNC int vdbOccupancyOffset(VolumeData v) { return v.kind.w; }  // after the grid, 0 = no culling
 
 // Per-frame constants shared by every pass. 416 bytes.
 struct FrameUniforms {
@@ -74,13 +82,17 @@ struct FrameUniforms {
     ivec4 froxelDims;     // xyz: froxel grid size; w: tile size [px]
     ivec4 counts;         // x: image width, y: image height [px]; z: volume count; w: light count
     vec4 jitter;          // xyz: sample position inside each froxel in [0,1)^3 (0.5 = centre); w unused
-    ivec4 shadows;        // x: fog transmittance toward point and spot lights too (0/1; the sun's
-                          // is always on; shadows.h); y: transmittance volume reduction r >= 1
-                          // (shadow_volume.h); z: index + 1 of the light the sun shadow
-                          // map serves, 0 = none (sun_shadow.h); w: texels per side of each
-                          // point/spot shadow map face, 0 = none (local_shadow.h)
-    ivec4 vdb;            // x: shadow march samples per shortest voxel edge, 0 = vdb volumes cast
-                          // no fog shadows (vdb_shadow.h); yzw unused
+    // Shadows (four ints fill one 16-byte slot in std140, std430 and C++ alike):
+    int localFogShadows;  // fog transmittance toward point and spot lights too (0/1; the sun's is
+                          // always on; shadows.h)
+    int shadowReduction;  // transmittance volume reduction r >= 1 (shadow_volume.h)
+    int sunShadowLight;   // index + 1 of the light the sun shadow map serves, 0 = none (sun_shadow.h)
+    int localShadowTexels;  // texels per side of each point/spot shadow map face, 0 = none (local_shadow.h)
+    int vdbShadowSamples;   // vdb shadow march samples per shortest voxel edge, 0 = vdb volumes cast
+                            // no fog shadows (vdb_shadow.h)
+    int vdbPad0;
+    int vdbPad1;
+    int vdbPad2;
     vec4 temporal;        // temporal pass (temporal.h): x: this frame's history weight (0 = no
                           // history); y: 1 = the view rests (progressive mean, no clamp), 0 = it
                           // moved or the scene time changed; zw unused

@@ -1,11 +1,11 @@
 // VDB volumes in the froxel renderers' fog shadows (docs/shadows.md, "VDB volumes"). A grid has no
 // closed-form line integral, so its optical depth toward a light is marched: the shadow ray is clipped
 // to the grid's world bounds (the active voxels' box grown by one voxel, VolumeData.worldMin/Max), then
-// cut into equal steps of at most 1 / FrameUniforms.vdb.x of the grid's shortest voxel edge
+// cut into equal steps of at most 1 / FrameUniforms.vdbShadowSamples of the grid's shortest voxel edge
 // (VolumeData.params.y), each sampled trilinearly at its midpoint. The CPU (NanoVDB) and the GPU
 // (PNanoVDB) run the same loop over the same sample points:
 //
-//   VdbShadowMarch m = vdbShadowMarch(v, p, dir, maxDist, frame.vdb.x);
+//   VdbShadowMarch m = vdbShadowMarch(v, p, dir, maxDist, frame.vdbShadowSamples);
 //   float sum = 0; for (int s = 0; s < m.count; ++s) sum += density(m.start + m.step * float(s));
 //   tau += vdbShadowOpticalDepth(v, sum, m.stepLength);
 //
@@ -39,7 +39,7 @@ BRUME_FUNC VdbShadowMarch vdbShadowMarch(VolumeData v, vec3 p, vec3 dir, float m
     m.step = vec3(0.0f);
     m.stepLength = 0.0f;
     m.count = 0;
-    if (v.kind.x != VOLUME_VDB || v.kind.z == 0 || samplesPerVoxel <= 0) return m;
+    if (v.kind.x != VOLUME_VDB || !vdbHasGrid(v) || samplesPerVoxel <= 0) return m;
     // The bounds' box as the cube [-1, 1]^3: scaling each axis keeps the ray parameter.
     vec3 centre = 0.5f * (vec3(v.worldMax) + vec3(v.worldMin));
     vec3 halfSize = max(0.5f * (vec3(v.worldMax) - vec3(v.worldMin)), vec3(1.0e-6f));
