@@ -52,11 +52,7 @@ std::optional<CommandResult> checkOptions(const BakeCommandOptions& o) {
     const Setting& th = settings::cli_threads;
     if (o.threads < th.min || o.threads > th.max)
         return badInput("--threads " + std::to_string(o.threads) + " is out of range: expected " + formatRange(th) + ".");
-    const fs::path path(o.out);
-    if (path.extension() != ".vdb") return badInput(o.out + ": the output must be a .vdb file.");
-    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(dir)) return badInput(o.out + ": the folder " + dir.string() + " does not exist.");
-    return std::nullopt;
+    return checkOutputPath(o.out, ".vdb");
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // that main prints as "error: SENTENCE" (the whole of stderr on failure, so scripts can show it).
 #pragma once
 
+#include <filesystem>
+#include <optional>
 #include <string>
 
 namespace brume::app {
@@ -19,5 +21,14 @@ struct CommandResult {
 inline CommandResult success() { return {}; }
 inline CommandResult badInput(std::string message) { return {kExitBadInput, std::move(message)}; }
 inline CommandResult internalFailure(std::string message) { return {kExitInternal, std::move(message)}; }
+
+// An output path the command can write: ending in `extension` (".vdb") in a folder that exists.
+inline std::optional<CommandResult> checkOutputPath(const std::string& out, const std::string& extension) {
+    const std::filesystem::path path(out);
+    if (path.extension() != extension) return badInput(out + ": the output must be a " + extension + " file.");
+    const std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    if (!std::filesystem::is_directory(dir)) return badInput(out + ": the folder " + dir.string() + " does not exist.");
+    return std::nullopt;
+}
 
 }  // namespace brume::app

@@ -52,11 +52,7 @@ std::optional<CommandResult> checkOptions(const NoiseOptions& o) {
     // '#' addresses one of several same-named grids (docs/vdb.md), so a name cannot hold it.
     if (o.grid.empty() || o.grid.find('#') != std::string::npos)
         return badInput("--grid '" + o.grid + "' is not a usable grid name: it must be non-empty and without '#'.");
-    const fs::path path(o.out);
-    if (path.extension() != ".vdb") return badInput(o.out + ": the output must be a .vdb file.");
-    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(dir)) return badInput(o.out + ": the folder " + dir.string() + " does not exist.");
-    return std::nullopt;
+    return checkOutputPath(o.out, ".vdb");
 }
 
 }  // namespace
