@@ -52,6 +52,7 @@ VkAccessFlags readWriteAccess(VkPipelineStageFlags stages) {
     if (a & VK_ACCESS_SHADER_WRITE_BIT) a |= VK_ACCESS_SHADER_READ_BIT;
     if (a & VK_ACCESS_TRANSFER_WRITE_BIT) a |= VK_ACCESS_TRANSFER_READ_BIT;
     if (a & VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT) a |= VK_ACCESS_COLOR_ATTACHMENT_READ_BIT;
+    if (stages & VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT) a |= VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
     return a;
 }
 
@@ -116,6 +117,9 @@ Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bo
         usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;  // cleared with vkCmdFillBuffer each frame
         memory = Memory::Readback;
     }
+    // Reset with vkCmdUpdateBuffer each frame, read as a dispatch's group count.
+    if (d.kind == BufferKind::STORAGE_INDIRECT)
+        usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     return ensureBuffer(res[id], size, usage, memory, d.name, dirty);
 }
 
@@ -200,6 +204,11 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                            Memory::Upload, "geometry vertices", vertexDirty));
     BRUME_TRY(ensureFroxelImages(dims, dirty));
+    // Room for every froxel: the exact light pass's list (bindings.h ExactListHeader).
+    BRUME_TRY(ensureBuffer(BufferId::exactList,
+                           sizeof(shd::ExactListHeader) + static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) *
+                                                              static_cast<size_t>(dims.z) * sizeof(uint32_t),
+                           dirty));
     BRUME_TRY(ensureScreenImages(size, dirty));
     const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
     res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
@@ -242,6 +251,9 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
             break;
+        case Dispatch::ExactFroxels:
+            vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
+            break;
         case Dispatch::Raster: break;
     }
 }
@@ -254,6 +266,13 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
     Hazards hazards;
     vkCmdFillBuffer(cmd, res[BufferId::counters].buffer.get(), 0, VK_WHOLE_SIZE, 0);
     hazards.wrote(BufferId::counters, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    // Lists start empty, their indirect dispatch at (0, 1, 1) groups.
+    const shd::ExactListHeader emptyList{0, 1, 1, 0};
+    for (const BufferDecl& d : kBuffers) {
+        if (d.kind != BufferKind::STORAGE_INDIRECT) continue;
+        vkCmdUpdateBuffer(cmd, res[d.id].buffer.get(), 0, sizeof(emptyList), &emptyList);
+        hazards.wrote(d.id, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    }
     // The images rewritten every frame start from UNDEFINED: their old contents are discarded; the
     // previous frame finished before its fence was signalled, so nothing earlier needs waiting for.
     std::vector<VkImage> frameImages;

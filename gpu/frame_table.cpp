@@ -16,7 +16,7 @@ using H = HistoryId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 8> kPasses{{
+const std::array<PassDecl, 9> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
@@ -31,11 +31,17 @@ const std::array<PassDecl, 8> kPasses{{
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::Froxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::vdbGrids},
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission}},
-    // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission.
+    // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
+    // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::None, Dispatch::Froxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
-     {I::sourceImage, B::counters}},
+     {I::sourceImage, B::counters, B::exactList}},
+    // S again at the listed froxels only, with the exact closed-form transmittance where needed.
+    {"light exact", "light_exact", Variant::None, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
+     {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
+      I::mediaScatteringG, I::mediaEmission, B::exactList},
+     {I::sourceImage}},
     // S and sigma_t blended with the reprojected history (shared/temporal.h), then copied back over
     // sourceImage and mediaExtinction for the integrate pass.
     {"temporal", "temporal", Variant::None, Dispatch::Froxels, When::Always, Record::TemporalCopy,
@@ -107,6 +113,8 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    if (p.dispatch == Dispatch::ExactFroxels)
+        return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }
 

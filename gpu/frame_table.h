@@ -38,7 +38,7 @@ enum class HistoryId : uint8_t {
 };
 
 // The table's kind, format and shape tokens, given meaning.
-enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBACK };
+enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBACK, STORAGE_INDIRECT };
 enum class ImageFormat : uint8_t { rgba32f, r32f };
 enum class ImageShape : uint8_t { image2D, image3D };
 namespace image_flags {
@@ -146,6 +146,7 @@ enum class Dispatch : uint8_t {
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
+    ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     Raster,       // the geometry pass's draw (not a dispatch)
 };
 
@@ -190,7 +191,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 8> kPasses;
+extern const std::array<PassDecl, 9> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

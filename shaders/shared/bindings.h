@@ -15,6 +15,18 @@ struct FroxelCounters {
     uint pad1;
 };
 
+// The light pass's list of froxels that need the exact fog transmittance (light_body.glsl): this
+// header, then one uint per froxel (x + X (y + Y z)). groupsX..Z are the indirect dispatch of the
+// second light pass (VkDispatchIndirectCommand); the frame starts them at (0, 1, 1) and count at 0.
+struct ExactListHeader {
+    uint groupsX;
+    uint groupsY;
+    uint groupsZ;
+    uint count;
+};
+// Invocations per workgroup of the exact light pass (one per listed froxel).
+BRUME_CONST int LIGHT_EXACT_GROUP = 64;
+
 BRUME_NAMESPACE_END
 
 #endif

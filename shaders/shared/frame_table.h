@@ -15,7 +15,9 @@
 
 // Buffers: X(id, binding, kind, glsl layout, glsl qualifiers, block name, block body).
 //   kind UNIFORM: a uniform buffer the host writes; STORAGE: a storage buffer the host writes;
-//   STORAGE_GPU: one the passes write; STORAGE_READBACK: one the passes write and the host reads.
+//   STORAGE_GPU: one the passes write; STORAGE_READBACK: one the passes write and the host reads;
+//   STORAGE_INDIRECT: one the passes write that starts with a VkDispatchIndirectCommand, which the
+//   frame resets to (0, 1, 1) (the 4th uint to 0) before the first pass.
 //   Sizes follow the scene (volumes, lights, grids, shadow maps): GpuRenderer::State::prepare.
 #define BRUME_FRAME_BUFFERS(X) \
     X(frame, 0, UNIFORM, std140, uniform, FrameBlock, FrameUniforms frame;) \
@@ -27,7 +29,8 @@
     X(vdbGrids, 6, STORAGE, std430, readonly buffer, VdbGridBlock, uint vdbGridWords[];) \
     X(lightClusters, 7, STORAGE, std430, readonly buffer, ClusterBlock, int lightClusters[];) \
     X(sunShadowMap, 8, STORAGE, std430, readonly buffer, SunShadowBlock, SunShadowFit sunShadowFit; float sunShadowDepth[];) \
-    X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];)
+    X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];) \
+    X(exactList, 23, STORAGE_INDIRECT, std430, buffer, ExactListBlock, ExactListHeader exactList; uint exactFroxels[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -42,6 +45,8 @@
 //   lightClusters       int[]: light lists per cluster and the light reach record (clusters.h)
 //   sunShadowMap        SunShadowFit, then float depth[N * N] (sun_shadow.h), built on the host
 //   localShadowMaps     float[]: every point/spot shadow map face (local_shadow.h), built on the host
+//   exactList           ExactListHeader, then uint[] (bindings.h): the froxels whose fog transmittance
+//                       the light pass left to the exact pass, and that pass's indirect dispatch
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

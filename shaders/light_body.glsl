@@ -1,0 +1,97 @@
+// The light pass's body, built twice (light.comp, light_exact.comp): source S = sigma_s (lights'
+// in-scattering x fog transmittance toward the light, read from the shadow volume pass's output
+// (fog_shadow.glsl froxelFogTransmittance), + ambient) + emission (core: lightRow). Froxels with
+// sigma_t = 0 skip lighting and hold S = emission: nothing scatters where nothing extinguishes, but a
+// purely emissive medium still glows.
+//
+// Split in two dispatches because lavapipe pays for code whether a branch takes it or not
+// (docs/performance.md): the exact closed-form fallback of froxelFogTransmittance, needed where a
+// shadow edge crosses the shadow volume's cells, would cost every froxel.
+//   light.comp (every froxel): the trusted blend only; a froxel where some light's blend is not
+//     trusted is appended to exactList (its S written here is replaced by the second pass).
+//   light_exact.comp (indirect, one invocation per listed froxel): the whole sum again, with the
+//     exact fallback, in the same order, so S is what one pass computing both would write.
+#define BRUME_FROXEL_IMAGES
+#include "resources.glsl"
+#include "fog_shadow.glsl"
+#include "sun_shadow.glsl"
+#include "local_shadow.glsl"
+
+#ifdef BRUME_LIGHT_EXACT
+layout(local_size_x = LIGHT_EXACT_GROUP) in;
+#else
+layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+#endif
+
+#ifndef BRUME_LIGHT_EXACT
+// The trusted blend of light `light`'s fog transmittance at k (fog_shadow.glsl
+// froxelFogTransmittance without its exact fallback); trusted = false where that fallback is needed.
+vec3 trustedFogTransmittance(int light, ShadowLookup k, out bool trusted) {
+    trusted = true;
+    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
+    ShadowBlend b = blendShadowCells(light, k);
+    trusted = b.trusted;
+    return b.transmittance * vdbShadowBlend(light, k);
+}
+
+// Appends froxel `id` to exactList; the invocation that opens a workgroup's worth of entries adds
+// that workgroup to the indirect dispatch.
+void appendExact(ivec3 id) {
+    uint slot = atomicAdd(exactList.count, 1u);
+    exactFroxels[slot] = uint(id.x + frame.froxelDims.x * (id.y + frame.froxelDims.y * id.z));
+    if (slot % uint(LIGHT_EXACT_GROUP) == 0u) atomicAdd(exactList.groupsX, 1u);
+}
+#endif
+
+void main() {
+#ifdef BRUME_LIGHT_EXACT
+    uint slot = gl_GlobalInvocationID.x;
+    if (slot >= exactList.count) return;
+    uint linear = exactFroxels[slot];
+    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
+    ivec3 id = ivec3(int(linear % uint(frame.froxelDims.x)), int((linear % plane) / uint(frame.froxelDims.x)),
+                     int(linear / plane));
+#else
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
+    vec3 sigmaT = imageLoad(mediaExtinction, id).rgb;
+    if (sigmaT == vec3(0.0f)) {
+        imageStore(sourceImage, id, vec4(imageLoad(mediaEmission, id).rgb, 0.0f));
+        atomicAdd(counters.skippedFroxels, 1u);
+        return;
+    }
+    atomicAdd(counters.litFroxels, 1u);
+    bool exact = false;
+#endif
+    vec4 scatteringG = imageLoad(mediaScatteringG, id);
+    vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
+    vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
+    vec3 perSigmaS = frame.ambient.rgb;
+    ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadowReduction);
+    float nearest = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
+    // Only the lights of this froxel's cluster (clusters.h), in the CPU's order.
+    int record = clusterRecord(id, frame.froxelDims.xyz);
+    bool all = lightClusters[record] == CLUSTER_ALL_LIGHTS;
+    int count = all ? frame.counts.w : lightClusters[record];
+    for (int k = 0; k < count; ++k) {
+        int i = all ? k : lightClusters[record + 1 + k];
+        LightSample ls = evalLightNear(lights[i], p, nearest);
+        vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
+        // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
+        if (inScatter == vec3(0.0f)) continue;
+#ifdef BRUME_LIGHT_EXACT
+        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance) *
+                     sunShadowFroxelVisibility(i, p) * localShadowVisibility(i, p);
+#else
+        bool trusted;
+        perSigmaS += inScatter * trustedFogTransmittance(i, shadow, trusted) * sunShadowFroxelVisibility(i, p) *
+                     localShadowVisibility(i, p);
+        exact = exact || !trusted;
+#endif
+    }
+#ifndef BRUME_LIGHT_EXACT
+    if (exact) appendExact(id);
+#endif
+    vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
+    imageStore(sourceImage, id, vec4(source, 0.0f));
+}
