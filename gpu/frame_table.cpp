@@ -33,12 +33,12 @@ const std::array<PassDecl, 9> kPasses{{
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission}},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
-    {"light", "light", Variant::None, Dispatch::Froxels, When::Always, Record::Dispatch,
+    {"light", "light", Variant::Light, Dispatch::Froxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
-    {"light exact", "light_exact", Variant::None, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
+    {"light exact", "light_exact", Variant::Light, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}},
@@ -104,6 +104,10 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
     } else if (v == Variant::ShadowVolume && k.vdb) {
         name += "_vdb";
         if (quantized) name += std::string("_") + toString(k.encoding);
+    } else if (v == Variant::Light) {
+        if (!k.vdbShadows) name += "_novdb";
+        if (!k.sunShadowMap) name += "_nosun";
+        if (!k.localShadowMaps) name += "_nolocal";
     }
     return name + ".comp";
 }

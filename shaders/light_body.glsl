@@ -11,6 +11,9 @@
 //     trusted is appended to exactList (its S written here is replaced by the second pass).
 //   light_exact.comp (indirect, one invocation per listed froxel): the whole sum again, with the
 //     exact fallback, in the same order, so S is what one pass computing both would write.
+// Each is also built without the lookups a frame does not need (gpu/frame_table.h VariantKey; the
+// removed code would return 1 there): BRUME_LIGHT_NO_VDB (no vdb shadow layer),
+// BRUME_LIGHT_NO_SUN_MAP (no sun shadow map), BRUME_LIGHT_NO_LOCAL_MAPS (no point/spot shadow map).
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
 #include "fog_shadow.glsl"
@@ -23,7 +26,36 @@ layout(local_size_x = LIGHT_EXACT_GROUP) in;
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 #endif
 
-#ifndef BRUME_LIGHT_EXACT
+vec3 lightVdbShadowBlend(int light, ShadowLookup k) {
+#ifdef BRUME_LIGHT_NO_VDB
+    return vec3(1.0f);
+#else
+    return vdbShadowBlend(light, k);
+#endif
+}
+
+// Shadow maps' visibility of light i at p.
+float lightMapVisibility(int i, vec3 p) {
+    float v = 1.0f;
+#ifndef BRUME_LIGHT_NO_SUN_MAP
+    v *= sunShadowFroxelVisibility(i, p);
+#endif
+#ifndef BRUME_LIGHT_NO_LOCAL_MAPS
+    v *= localShadowVisibility(i, p);
+#endif
+    return v;
+}
+
+#ifdef BRUME_LIGHT_EXACT
+// fog_shadow.glsl froxelFogTransmittance, with the vdb layer as this variant has it.
+vec3 exactFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
+    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
+    vec3 vdb = lightVdbShadowBlend(light, k);
+    ShadowBlend b = blendShadowCells(light, k);
+    if (b.trusted) return b.transmittance * vdb;
+    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
+}
+#else
 // The trusted blend of light `light`'s fog transmittance at k (fog_shadow.glsl
 // froxelFogTransmittance without its exact fallback); trusted = false where that fallback is needed.
 vec3 trustedFogTransmittance(int light, ShadowLookup k, out bool trusted) {
@@ -31,7 +63,7 @@ vec3 trustedFogTransmittance(int light, ShadowLookup k, out bool trusted) {
     if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
     ShadowBlend b = blendShadowCells(light, k);
     trusted = b.trusted;
-    return b.transmittance * vdbShadowBlend(light, k);
+    return b.transmittance * lightVdbShadowBlend(light, k);
 }
 
 // Appends froxel `id` to exactList; the invocation that opens a workgroup's worth of entries adds
@@ -80,12 +112,10 @@ void main() {
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
 #ifdef BRUME_LIGHT_EXACT
-        perSigmaS += inScatter * froxelFogTransmittance(i, shadow, p, ls.toLight, ls.distance) *
-                     sunShadowFroxelVisibility(i, p) * localShadowVisibility(i, p);
+        perSigmaS += inScatter * exactFogTransmittance(i, shadow, p, ls.toLight, ls.distance) * lightMapVisibility(i, p);
 #else
         bool trusted;
-        perSigmaS += inScatter * trustedFogTransmittance(i, shadow, trusted) * sunShadowFroxelVisibility(i, p) *
-                     localShadowVisibility(i, p);
+        perSigmaS += inScatter * trustedFogTransmittance(i, shadow, trusted) * lightMapVisibility(i, p);
         exact = exact || !trusted;
 #endif
     }

@@ -145,7 +145,7 @@ TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
             // Variants built with -D defines (shaders/CMakeLists.txt) share their source's bindings.
             for (const VariantKey& k : variants) {
                 std::string n = variantShaderName(p.shader, p.variant, k);
-                for (const char* e : {"_fp16", "_fp8"})
+                for (const char* e : {"_fp16", "_fp8", "_novdb", "_nosun", "_nolocal"})
                     if (auto at = n.find(e); at != std::string::npos) n.erase(at, std::string(e).size());
                 sources.insert(n);
             }
@@ -171,6 +171,10 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, {true, true, VdbEncoding::Fp8}),
               "shadow_volume_vdb_fp8.comp");
     EXPECT_EQ(variantShaderName("light", Variant::None, {true, true, VdbEncoding::Fp8}), "light.comp");
+    EXPECT_EQ(variantShaderName("light", Variant::Light, {}), "light.comp");
+    VariantKey bare;
+    bare.vdbShadows = bare.sunShadowMap = bare.localShadowMaps = false;
+    EXPECT_EQ(variantShaderName("light_exact", Variant::Light, bare), "light_exact_novdb_nosun_nolocal.comp");
 }
 
 }  // namespace
