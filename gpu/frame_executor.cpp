@@ -232,6 +232,28 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     return {};
 }
 
+// Outside the media region the voxelize and light passes would write 0 (core/media_region.h): when
+// the region is not the whole grid, clear what they write, then dispatch over the region.
+void recordClearMedia(const PassContext& ctx) {
+    const FrameResources& r = *ctx.res;
+    if (r.mediaOrigin != glm::ivec3(0) || r.mediaExtent != r.froxelDims) {
+        const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+        const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        // After the frame's layout transitions and last frame's readers (compute and copies).
+        memoryBarrier(ctx.cmd, compute | transfer, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, transfer,
+                      VK_ACCESS_TRANSFER_WRITE_BIT);
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        for (ResRef w : ctx.pass->writes)
+            if (w.kind == ResRef::Kind::Image)
+                vkCmdClearColorImage(ctx.cmd, r.image(w, ctx.historyWriteIndex).image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
+                                     1, &all);
+        memoryBarrier(ctx.cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, compute,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    dispatchPass(ctx);
+}
+
 void dispatchPass(const PassContext& ctx) {
     bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
     const FrameResources& r = *ctx.res;
@@ -250,6 +272,10 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::ShadowCells:
             vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
+            break;
+        case Dispatch::MediaFroxels:
+            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::FROXEL_GROUP_X), groups(r.mediaExtent.y, shd::FROXEL_GROUP_Y),
+                          groups(r.mediaExtent.z, shd::FROXEL_GROUP_Z));
             break;
         case Dispatch::ExactFroxels:
             vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
@@ -321,6 +347,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         }
         switch (p.record) {
             case Record::Dispatch: dispatchPass(ctx); break;
+            case Record::ClearMedia: recordClearMedia(ctx); break;
             case Record::Geometry: geometry.record(ctx); break;
             case Record::TemporalCopy: recordTemporal(ctx); break;
             case Record::DebugView: recordDebugView(ctx); break;

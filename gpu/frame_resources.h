@@ -42,6 +42,10 @@ struct FrameResources {
     glm::ivec2 size{0};        // of the image2D resources
     // Cells x, y and z * lights: the shadow volume pass's dispatch (shaders/shared/shadow_volume.h).
     glm::ivec3 shadowExtent{0};
+    // The froxels the voxelize and light passes dispatch over (core/media_region.h); the rest of
+    // the media and source images is cleared to 0 when it is not the whole grid.
+    glm::ivec3 mediaOrigin{0};
+    glm::ivec3 mediaExtent{0};
 
     Buffer vertices;  // GeometryVertex[] of the geometry pass (not in the descriptor set)
     // The grids behind buffers[vdbGrids], in order; held so that a new grid cannot reuse a freed one's address.

@@ -27,13 +27,14 @@ const std::array<PassDecl, 9> kPasses{{
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
      {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
      {I::sceneColor, I::sceneDepth}},
-    // Media of every volume at each froxel's sample point.
-    {"voxelize", "voxelize", Variant::Voxelize, Dispatch::Froxels, When::Always, Record::Dispatch,
+    // Media of every volume at each froxel's sample point, over the froxels that can hold media
+    // (core/media_region.h); the rest of the media and source images is cleared to 0.
+    {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
      {B::frame, B::volumes, B::vdbGrids},
-     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission}},
+     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
-    {"light", "light", Variant::Light, Dispatch::Froxels, When::Always, Record::Dispatch,
+    {"light", "light", Variant::Light, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}},

@@ -143,6 +143,7 @@ struct ResList {
 // How many invocations a compute pass runs (workgroup sizes: shaders/shared/types.h).
 enum class Dispatch : uint8_t {
     Froxels,      // one per froxel, FROXEL_GROUP_*
+    MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), FROXEL_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
@@ -181,6 +182,7 @@ enum class Record : uint8_t {
     Dispatch,      // bind the pipeline and the set, dispatch by the rule
     Geometry,      // the raster pass (pass_geometry.cpp)
     TemporalCopy,  // dispatch, then copy the history's output over source and extinction (pass_temporal.cpp)
+    ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
 };
 

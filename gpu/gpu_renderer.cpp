@@ -8,6 +8,7 @@
 #include "core/clusters.h"
 #include "core/compile.h"
 #include "core/light_reach.h"
+#include "core/media_region.h"
 #include "core/shadows.h"
 #include "core/sun_shadow.h"
 #include "core/vdb_shadow.h"
@@ -171,6 +172,10 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const std::vector<int> reach = lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling), cs.lights.size());
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
+    // Voxelize and light run over the froxels that can hold media (core/media_region.h).
+    const FroxelRegion media = mediaFroxelRegion(cs, frame);
+    r.mediaOrigin = media.lo;
+    r.mediaExtent = media.hi - media.lo;
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
     r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadowReduction).z * reach[1 + cs.lights.size()];
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
@@ -195,6 +200,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         applySunShadowSettings(frame, cs);
         applyVdbShadowSettings(frame, cs, request);
         setTemporalBlend(frame, s_->temporalState, t);
+        frame.mediaOriginX = media.lo.x, frame.mediaOriginY = media.lo.y, frame.mediaOriginZ = media.lo.z;
         std::memcpy(r[BufferId::frame].mapped, &frame, sizeof(frame));
         std::memcpy(r[BufferId::previousFrame].mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);
@@ -222,7 +228,12 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     }
     const auto* counters = static_cast<const shd::FroxelCounters*>(r[BufferId::counters].mapped);
     out.litFroxels = counters->litFroxels;
-    out.skippedFroxels = counters->skippedFroxels;
+    // The light pass skips the froxels outside the media region too: they hold no media.
+    auto covered = [&](int axis, int group) {  // froxels of the dispatch inside the grid along one axis
+        return int64_t(std::min(shd::brumeDivRoundUp(r.mediaExtent[axis], group) * group, dims[axis] - r.mediaOrigin[axis]));
+    };
+    const int64_t dispatched = covered(0, shd::FROXEL_GROUP_X) * covered(1, shd::FROXEL_GROUP_Y) * covered(2, shd::FROXEL_GROUP_Z);
+    out.skippedFroxels = counters->skippedFroxels + size_t(int64_t(dims.x) * dims.y * dims.z - dispatched);
     out.overfullClusters = clusters.overfullClusters;
     Result<std::vector<PassTiming>> timings = s_->timer.read();
     if (!timings) return timings.error();

@@ -28,6 +28,10 @@ struct PassContext {
 // Binds ctx.pipeline and the set and dispatches ctx.pass's rule.
 void dispatchPass(const PassContext& ctx);
 
+// Voxelize (Record::ClearMedia): the images it writes cleared to 0 when the media region is not the
+// whole grid, then the dispatch over the region.
+void recordClearMedia(const PassContext& ctx);
+
 // Geometry (Record::Geometry): planes, boxes and spheres rasterized with a depth test into the
 // sceneColor and sceneDepth targets, shaded like core/geometry.cpp shadeSurface with the fog's
 // shadow and the shadow maps, not exact occlusion.

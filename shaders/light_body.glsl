@@ -11,6 +11,7 @@
 //     trusted is appended to exactList (its S written here is replaced by the second pass).
 //   light_exact.comp (indirect, one invocation per listed froxel): the whole sum again, with the
 //     exact fallback, in the same order, so S is what one pass computing both would write.
+// light.comp runs over the froxels that can hold media only (core/media_region.h), like voxelize.
 // Each is also built without the lookups a frame does not need (gpu/frame_table.h VariantKey; the
 // removed code would return 1 there): BRUME_LIGHT_NO_VDB (no vdb shadow layer),
 // BRUME_LIGHT_NO_SUN_MAP (no sun shadow map), BRUME_LIGHT_NO_LOCAL_MAPS (no point/spot shadow map).
@@ -84,7 +85,7 @@ void main() {
     ivec3 id = ivec3(int(linear % uint(frame.froxelDims.x)), int((linear % plane) / uint(frame.froxelDims.x)),
                      int(linear / plane));
 #else
-    ivec3 id = ivec3(gl_GlobalInvocationID);
+    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
     if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
     vec3 sigmaT = imageLoad(mediaExtinction, id).rgb;
     if (sigmaT == vec3(0.0f)) {

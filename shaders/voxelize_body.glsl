@@ -2,6 +2,8 @@
 // volume at each froxel's sample point (core: voxelizeRow). Variants because the inlined PNanoVDB walk
 // makes the whole shader ~9x slower on lavapipe (1031 vs 115 ms at 1280x720 high) even when no volume
 // takes that branch: scenes without vdb volumes (density textures) run a variant without that branch.
+// Dispatched over the froxels that can hold media only (core/media_region.h: frame.mediaOrigin*); the
+// frame clears the rest of the grid.
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
 MediaSample mediaAt(vec3 p) {
@@ -23,7 +25,7 @@ MediaSample mediaAt(vec3 p) {
 }
 
 void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
+    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
     if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     MediaSample m = mediaAt(p);

@@ -90,9 +90,11 @@ struct FrameUniforms {
     int localShadowTexels;  // texels per side of each point/spot shadow map face, 0 = none (local_shadow.h)
     int vdbShadowSamples;   // vdb shadow march samples per shortest voxel edge, 0 = vdb volumes cast
                             // no fog shadows (vdb_shadow.h)
-    int vdbPad0;
-    int vdbPad1;
-    int vdbPad2;
+    // GPU only (0 on the CPU): the first froxel of the region the voxelize and light passes dispatch
+    // over (core/media_region.h); the rest of the grid holds no media.
+    int mediaOriginX;
+    int mediaOriginY;
+    int mediaOriginZ;
     vec4 temporal;        // temporal pass (temporal.h): x: this frame's history weight (0 = no
                           // history); y: 1 = the view rests (progressive mean, no clamp), 0 = it
                           // moved or the scene time changed; zw unused
