@@ -42,7 +42,7 @@ bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& fra
 }
 
 LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
-                           bool culling) {
+                           bool culling, bool surfaces) {
     LightReach out;
     out.shadowVolume.assign(cs.lights.size(), 0);
     const std::vector<char> listed = listedInClusters(clusters, cs.lights.size());
@@ -52,7 +52,8 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
         if (surface) out.surfaceLights.push_back(static_cast<int>(i));
         if (!shd::fogShadowsLight(l, frame.localFogShadows)) continue;
         // Surfaces read the volume inside the froxel grid only: from the camera to the froxel far.
-        const bool read = listed[i] || (surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
+        const bool read =
+            listed[i] || (surfaces && surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
         out.shadowVolume[i] = !culling || read ? 1 : 0;
     }
     std::stable_partition(out.surfaceLights.begin(), out.surfaceLights.end(),

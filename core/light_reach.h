@@ -27,9 +27,10 @@ struct LightReach {
 };
 
 // The reach for `frame`, whose light pass reads `clusters`. culling = false: every light is a surface
-// light and every fog-shadowed light gets its layer.
+// light and every fog-shadowed light gets its layer. surfaces = false: the frame shades no surface
+// (no geometry), so only the light pass reads the transmittance volume.
 LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
-                           bool culling = true);
+                           bool culling = true, bool surfaces = true);
 
 // Whether light l's range window can reach a point of the view frustum between view depths
 // nearDepth and farDepth [m] (fog_scale is not looked at).

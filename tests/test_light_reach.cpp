@@ -102,6 +102,9 @@ TEST(LightReach, ShadowVolumeLayersOnlyForLightsThatTouchSomething) {
     const LightReach all = buildLightReach(cs, frame, buildLightClusters(cs, frame, false), /*culling=*/false);
     EXPECT_EQ(all.shadowVolume, std::vector<int>(cs.lights.size(), 1));
     EXPECT_EQ(all.surfaceLights.size(), cs.lights.size());
+    // Without surfaces only the light pass reads layers: not the surface-only light in view (6).
+    const LightReach fogOnly = buildLightReach(cs, frame, buildLightClusters(cs, frame), true, /*surfaces=*/false);
+    EXPECT_EQ(fogOnly.shadowVolume, (std::vector<int>{1, 1, 0, 0, 0, 0, 0, 0, 1}));
 }
 
 // Skipped layers are never read: the CPU image and source are the unculled ones, bit for bit, with
