@@ -12,14 +12,24 @@ namespace {
 // outside the frustum; a light grazing it must not be culled by rounding.
 constexpr float kSlack = 1.0e-3f;
 
-// Lights some cluster lists (every light that can reach one, when a cluster is over-full and
-// loops over all of them).
-std::vector<char> listedInClusters(const LightClusters& clusters, size_t lightCount) {
+// Lights some cluster holding a froxel of `froxels` lists (every light that can reach one, when a
+// cluster is over-full and loops over all of them).
+std::vector<char> listedInClusters(const LightClusters& clusters, size_t lightCount, const FroxelRegion& froxels) {
     std::vector<char> listed(lightCount, 0);
-    for (size_t r = 0; r < clusters.records.size(); r += shd::CLUSTER_STRIDE) {
-        const int n = clusters.records[r];
-        if (n == shd::CLUSTER_ALL_LIGHTS) return std::vector<char>(lightCount, 1);
-        for (int k = 0; k < n; ++k) listed[static_cast<size_t>(clusters.records[r + 1 + static_cast<size_t>(k)])] = 1;
+    if (froxels.empty()) return listed;
+    const glm::ivec3 lo = froxels.lo / shd::CLUSTER_FROXELS;
+    const glm::ivec3 hi = glm::min((froxels.hi - 1) / shd::CLUSTER_FROXELS, clusters.dims - 1);
+    for (int z = lo.z; z <= hi.z; ++z) {
+        for (int y = lo.y; y <= hi.y; ++y) {
+            for (int x = lo.x; x <= hi.x; ++x) {
+                const size_t r =
+                    static_cast<size_t>((z * clusters.dims.y + y) * clusters.dims.x + x) * shd::CLUSTER_STRIDE;
+                const int n = clusters.records[r];
+                if (n == shd::CLUSTER_ALL_LIGHTS) return std::vector<char>(lightCount, 1);
+                for (int k = 0; k < n; ++k)
+                    listed[static_cast<size_t>(clusters.records[r + 1 + static_cast<size_t>(k)])] = 1;
+            }
+        }
     }
     return listed;
 }
@@ -42,10 +52,12 @@ bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& fra
 }
 
 LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
-                           bool culling, bool surfaces) {
+                           bool culling, bool surfaces, const FroxelRegion* lightPassFroxels) {
     LightReach out;
     out.shadowVolume.assign(cs.lights.size(), 0);
-    const std::vector<char> listed = listedInClusters(clusters, cs.lights.size());
+    const FroxelRegion grid{glm::ivec3(0), glm::ivec3(frame.froxelDims)};
+    const std::vector<char> listed =
+        listedInClusters(clusters, cs.lights.size(), lightPassFroxels ? *lightPassFroxels : grid);
     for (size_t i = 0; i < cs.lights.size(); ++i) {
         const shd::LightData& l = cs.lights[i];
         const bool surface = !culling || lightMayReachFrustum(l, frame, frame.projection.z, frame.projection.w);

@@ -15,6 +15,7 @@
 
 #include "clusters.h"
 #include "compile.h"
+#include "media_region.h"
 
 namespace brume {
 
@@ -28,9 +29,11 @@ struct LightReach {
 
 // The reach for `frame`, whose light pass reads `clusters`. culling = false: every light is a surface
 // light and every fog-shadowed light gets its layer. surfaces = false: the frame shades no surface
-// (no geometry), so only the light pass reads the transmittance volume.
+// (no geometry), so only the light pass reads the transmittance volume. lightPassFroxels: the
+// froxels the light pass runs (the GPU's media region, core/media_region.h), whose clusters' lists
+// are the ones it reads; null = every froxel.
 LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightClusters& clusters,
-                           bool culling = true, bool surfaces = true);
+                           bool culling = true, bool surfaces = true, const FroxelRegion* lightPassFroxels = nullptr);
 
 // Whether light l's range window can reach a point of the view frustum between view depths
 // nearDepth and farDepth [m] (fog_scale is not looked at).

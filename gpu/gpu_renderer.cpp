@@ -169,14 +169,20 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
-    const std::vector<int> reach = lightReachRecord(
-        buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!vertices.empty()), cs.lights.size());
-    std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
-                reach.size() * sizeof(int));
-    // Voxelize and light run over the froxels that can hold media (core/media_region.h).
+    // Voxelize and light run over the froxels that can hold media (core/media_region.h), rounded up
+    // to whole workgroups: only those froxels' clusters are read.
     const FroxelRegion media = mediaFroxelRegion(cs, frame);
     r.mediaOrigin = media.lo;
     r.mediaExtent = media.hi - media.lo;
+    const glm::ivec3 groupSize(shd::FROXEL_GROUP_X, shd::FROXEL_GROUP_Y, shd::FROXEL_GROUP_Z);
+    const FroxelRegion lightFroxels{media.lo,
+                                    glm::min(media.lo + (r.mediaExtent + groupSize - 1) / groupSize * groupSize, dims)};
+    const std::vector<int> reach =
+        lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!vertices.empty(),
+                                         &lightFroxels),
+                         cs.lights.size());
+    std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
+                reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
     r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadowReduction).z * reach[1 + cs.lights.size()];
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
@@ -230,10 +236,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const auto* counters = static_cast<const shd::FroxelCounters*>(r[BufferId::counters].mapped);
     out.litFroxels = counters->litFroxels;
     // The light pass skips the froxels outside the media region too: they hold no media.
-    auto covered = [&](int axis, int group) {  // froxels of the dispatch inside the grid along one axis
-        return int64_t(std::min(shd::brumeDivRoundUp(r.mediaExtent[axis], group) * group, dims[axis] - r.mediaOrigin[axis]));
-    };
-    const int64_t dispatched = covered(0, shd::FROXEL_GROUP_X) * covered(1, shd::FROXEL_GROUP_Y) * covered(2, shd::FROXEL_GROUP_Z);
+    const int64_t dispatched = lightFroxels.froxels();
     out.skippedFroxels = counters->skippedFroxels + size_t(int64_t(dims.x) * dims.y * dims.z - dispatched);
     out.overfullClusters = clusters.overfullClusters;
     Result<std::vector<PassTiming>> timings = s_->timer.read();

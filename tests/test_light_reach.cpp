@@ -105,6 +105,12 @@ TEST(LightReach, ShadowVolumeLayersOnlyForLightsThatTouchSomething) {
     // Without surfaces only the light pass reads layers: not the surface-only light in view (6).
     const LightReach fogOnly = buildLightReach(cs, frame, buildLightClusters(cs, frame), true, /*surfaces=*/false);
     EXPECT_EQ(fogOnly.shadowVolume, (std::vector<int>{1, 1, 0, 0, 0, 0, 0, 0, 1}));
+    // The light pass reads the clusters of the froxels it runs only (the GPU's media region): none
+    // of them, no layer; all of them, the layers above.
+    const LightClusters clusters = buildLightClusters(cs, frame);
+    const FroxelRegion none{}, grid{glm::ivec3(0), glm::ivec3(frame.froxelDims)};
+    EXPECT_EQ(buildLightReach(cs, frame, clusters, true, false, &none).shadowVolume, std::vector<int>(cs.lights.size(), 0));
+    EXPECT_EQ(buildLightReach(cs, frame, clusters, true, true, &grid).shadowVolume, reach.shadowVolume);
 }
 
 // Skipped layers are never read: the CPU image and source are the unculled ones, bit for bit, with
