@@ -27,7 +27,8 @@
     X(vdbGrids, 6, STORAGE, std430, readonly buffer, VdbGridBlock, uint vdbGridWords[];) \
     X(lightClusters, 7, STORAGE, std430, readonly buffer, ClusterBlock, int lightClusters[];) \
     X(sunShadowMap, 8, STORAGE, std430, readonly buffer, SunShadowBlock, SunShadowFit sunShadowFit; float sunShadowDepth[];) \
-    X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];)
+    X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];) \
+    X(distantTable, 23, STORAGE_GPU, std430, buffer, DistantTableBlock, vec4 distantTable[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -42,6 +43,8 @@
 //   lightClusters       int[]: light lists per cluster and the light reach record (clusters.h)
 //   sunShadowMap        SunShadowFit, then float depth[N * N] (sun_shadow.h), built on the host
 //   localShadowMaps     float[]: every point/spot shadow map face (local_shadow.h), built on the host
+//   distantTable        vec4[]: the distant fog per tile corner and depth (distant_table.h), written
+//                       by the distant fog pass, read by the composite
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
