@@ -199,28 +199,32 @@ shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
     return m;
 }
 
+shd::Accumulated accumulateDistantPiece(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1) {
+    const glm::vec3 middle = cs.cameraPosition + dir * std::sqrt(s0 * s1);
+    // Ambient and emission first, then each directional light with its transmittance evaluated
+    // once per piece (the GPU's distant_fog.comp in the same order).
+    shd::DistantSegment seg = shd::emptyDistantSegment();
+    for (const shd::VolumeData& v : cs.volumes) {
+        const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, s0, s1);
+        seg = shd::addDistantVolume(seg, v, len, cs.ambient);
+    }
+    for (const shd::LightData& l : cs.lights) {
+        if (l.kind.x != shd::LIGHT_DIRECTIONAL) continue;
+        const glm::vec3 t = lightFogTransmittance(cs, l, middle, -glm::vec3(l.direction), shd::BRUME_HUGE, 0);
+        for (const shd::VolumeData& v : cs.volumes) {
+            const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, s0, s1);
+            seg = shd::addDistantLight(seg, v, len, shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w) * t);
+        }
+    }
+    return shd::accumulateDistant(a, seg);
+}
+
 shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1) {
     if (!(s1 > s0)) return a;
     const int pieces = shd::distantShadowPieceCount(s0, s1);
     for (int piece = 0; piece < pieces; ++piece) {
         const glm::vec2 b = shd::distantShadowPiece(s0, s1, piece, pieces);
-        const glm::vec3 middle = cs.cameraPosition + dir * std::sqrt(b.x * b.y);
-        // Ambient and emission first, then each directional light with its transmittance evaluated
-        // once per piece (the GPU's composite.comp in the same order).
-        shd::DistantSegment seg = shd::emptyDistantSegment();
-        for (const shd::VolumeData& v : cs.volumes) {
-            const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, b.x, b.y);
-            seg = shd::addDistantVolume(seg, v, len, cs.ambient);
-        }
-        for (const shd::LightData& l : cs.lights) {
-            if (l.kind.x != shd::LIGHT_DIRECTIONAL) continue;
-            const glm::vec3 t = lightFogTransmittance(cs, l, middle, -glm::vec3(l.direction), shd::BRUME_HUGE, 0);
-            for (const shd::VolumeData& v : cs.volumes) {
-                const float len = shd::distantDensityLength(v, cs.cameraPosition, dir, b.x, b.y);
-                seg = shd::addDistantLight(seg, v, len, shd::distantLightPerSigmaS(l, dir, v.sigmaS_g.w) * t);
-            }
-        }
-        a = shd::accumulateDistant(a, seg);
+        a = accumulateDistantPiece(cs, a, dir, b.x, b.y);
     }
     return a;
 }

@@ -46,6 +46,9 @@ shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 worldPos);
 // position, dir unit), lit by the directional lights and the ambient: what lies past the froxel range
 // (shaders/shared/distant.h). Accumulated onto `a`.
 shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1);
+// One piece of it: [s0, s1] lit by each directional light's fog transmittance at the piece's geometric
+// middle (the renderers' distant fog table, shaders/shared/distant_table.h, is made of these).
+shd::Accumulated accumulateDistantPiece(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1);
 
 // Per-frame constants for an image of width x height with the given froxel settings.
 // jitter is the sample position inside each froxel, (0.5, 0.5, 0.5) = centres.

@@ -22,6 +22,7 @@
 #include "shadows.h"
 #include "sun_shadow.h"
 #include "vdb_shadow.h"
+#include "shaders/shared/distant_table.h"
 
 namespace brume {
 namespace {
@@ -132,9 +133,60 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
     return shd::mixAccumulated(shd::emptyAccumulated(), entries, k.entryWeight);
 }
 
+// The distant fog table (shaders/shared/distant_table.h; GPU: distant_fog.comp): per tile corner,
+// entries 1..n, each the fog accumulated from the froxel far to that entry's view depth.
+struct DistantTable {
+    glm::ivec2 corners{0};
+    int entries = 0;
+    std::vector<shd::Accumulated> values;  // [(corner row * corners.x + column) * n + j - 1]
+
+    shd::Accumulated at(int x, int y, int j) const {
+        if (j <= 0) return shd::emptyAccumulated();
+        return values[static_cast<size_t>((y * corners.x + x) * entries + j - 1)];
+    }
+};
+
+DistantTable buildDistantTable(const CompiledScene& cs, const shd::FrameUniforms& frame, int threads) {
+    DistantTable t;
+    t.corners = shd::distantTableCorners(glm::ivec2(frame.counts));
+    t.entries = shd::distantTableEntries(frame);
+    if (t.entries == 0) return t;
+    const int n = t.entries;
+    t.values.assign(static_cast<size_t>(t.corners.x * t.corners.y * n), shd::emptyAccumulated());
+    parallelFor(t.corners.y, threads, [&](int y) {
+        for (int x = 0; x < t.corners.x; ++x) {
+            const vec3 viewRay = shd::viewRayFromPixel(vec2(glm::ivec2(x, y) * shd::DISTANT_TILE_PX), frame);
+            const float rayPerDepth = glm::length(viewRay);
+            const vec3 dir = glm::normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
+            shd::Accumulated a = shd::emptyAccumulated();
+            for (int j = 1; j <= n; ++j) {
+                a = accumulateDistantPiece(cs, a, dir, shd::distantTableDepth(frame, j - 1, n) * rayPerDepth,
+                                           shd::distantTableDepth(frame, j, n) * rayPerDepth);
+                t.values[static_cast<size_t>((y * t.corners.x + x) * n + j - 1)] = a;
+            }
+        }
+    });
+    return t;
+}
+
+// The fog from the froxel far to viewDepth (> the froxel far) at a pixel, as composite.comp reads it.
+shd::Accumulated distantFogAt(const DistantTable& t, const shd::FrameUniforms& frame, vec2 pixel, float viewDepth) {
+    const shd::DistantTableLookup k = shd::distantTableLookup(pixel, viewDepth, frame, t.entries);
+    shd::Accumulated byEntry[2];
+    for (int e = 0; e < 2; ++e) {
+        const int j = k.entry - 1 + e;
+        const shd::Accumulated row0 =
+            shd::mixAccumulated(t.at(k.corners.x, k.corners.y, j), t.at(k.corners.z, k.corners.y, j), k.weights.x);
+        const shd::Accumulated row1 =
+            shd::mixAccumulated(t.at(k.corners.x, k.corners.w, j), t.at(k.corners.z, k.corners.w, j), k.weights.x);
+        byEntry[e] = shd::mixAccumulated(row0, row1, k.weights.y);
+    }
+    return shd::distantTableBlend(byEntry[0], byEntry[1], k.blend);
+}
+
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
 void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
-                  const LocalShadowMaps& local, const FroxelVolumes& v, Image& img, int y) {
+                  const LocalShadowMaps& local, const FroxelVolumes& v, const DistantTable& distant, Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -159,8 +211,8 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         shd::Accumulated fog = sampleIntegrated(v, pixel, viewDepth);
         // Past the froxel range, height and depth fog continue in closed form (shaders/shared/distant.h).
         const float froxelFar = v.frame.froxelRange.y;
-        if (viewDepth > froxelFar) {
-            fog = accumulateDistantFog(cs, fog, dir, froxelFar * rayPerDepth, viewDepth * rayPerDepth);
+        if (viewDepth > froxelFar && distant.entries > 0) {
+            fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
         }
         img.at(x, y) = shd::compositeFog(background, fog);
     }
@@ -234,8 +286,9 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     parallelFor(columns, threads, [&](int c) { integrateColumn(v, c % v.dims.x, c / v.dims.x); }, report);
     progress.finishedPass(columns);
 
-    parallelFor(request.height, threads, [&](int y) { compositeRow(cs, geometry, shadow, sun, local, v, result.image, y); },
-                report);
+    const DistantTable distant = buildDistantTable(cs, v.frame, threads);
+    parallelFor(request.height, threads,
+                [&](int y) { compositeRow(cs, geometry, shadow, sun, local, v, distant, result.image, y); }, report);
     if (request.debugView != shd::DEBUG_VIEW_FINAL)
         result.image = debugViewImage(v, request.debugView, request.debugSlice);
     return result;

@@ -7,6 +7,7 @@
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
+#include "shaders/shared/distant_table.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
@@ -228,6 +229,9 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(BufferId::lightClusters, clusterInts * sizeof(int), dirty));
     BRUME_TRY(ensureBuffer(BufferId::sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), dirty));
     BRUME_TRY(ensureBuffer(BufferId::localShadowMaps, std::max<size_t>(localShadowBytes, 4), dirty));
+    const glm::ivec2 corners = shd::distantTableCorners(size);
+    BRUME_TRY(ensureBuffer(BufferId::distantTable,
+                           static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     return {};
 }
@@ -280,6 +284,11 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::ExactFroxels:
             vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
             break;
+        case Dispatch::TileCorners: {
+            const glm::ivec2 corners = shd::distantTableCorners(r.size);
+            vkCmdDispatch(ctx.cmd, groups(corners.x, shd::SCREEN_GROUP_X), groups(corners.y, shd::SCREEN_GROUP_Y), 1);
+            break;
+        }
         case Dispatch::Raster: break;
     }
 }
@@ -334,7 +343,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         ctx.vertexCount = vertexCount;
         if (p.dispatch != Dispatch::Raster) {
             Result<const ComputePass*> pipeline =
-                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant));
+                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), p.specialized ? &spec : nullptr);
             if (!pipeline) return pipeline.error();
             ctx.pipeline = pipeline.value();
         }
@@ -348,7 +357,10 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         switch (p.record) {
             case Record::Dispatch: dispatchPass(ctx); break;
             case Record::ClearMedia: recordClearMedia(ctx); break;
-            case Record::Geometry: geometry.record(ctx); break;
+            case Record::Geometry:
+                BRUME_TRY(geometry.usePipeline(*device, layout, spec));
+                geometry.record(ctx);
+                break;
             case Record::TemporalCopy: recordTemporal(ctx); break;
             case Record::DebugView: recordDebugView(ctx); break;
         }

@@ -16,7 +16,7 @@ using H = HistoryId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 9> kPasses{{
+const std::array<PassDecl, 10> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
@@ -26,7 +26,7 @@ const std::array<PassDecl, 9> kPasses{{
     // fog's shadow and the shadow maps; sky = ambient at the camera far.
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
      {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
-     {I::sceneColor, I::sceneDepth}},
+     {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
@@ -53,11 +53,15 @@ const std::array<PassDecl, 9> kPasses{{
     {"integrate", "integrate", Variant::None, Dispatch::Columns, When::Always, Record::Dispatch,
      {B::frame, I::sourceImage, I::mediaExtinction},
      {I::integratedScattering, I::integratedTransmittance}},
-    // Fog over the surfaces, continued in closed form past the froxel far (shared/distant.h).
+    // The height and depth fog past the froxel far, in closed form per tile corner and depth
+    // (shared/distant_table.h); the composite interpolates it.
+    {"distant fog", "distant_fog", Variant::None, Dispatch::TileCorners, When::Always, Record::Dispatch,
+     {B::frame, B::volumes, B::lights, B::lightClusters},
+     {B::distantTable}, true},
+    // Fog over the surfaces, continued past the froxel far from the distant fog table.
     {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, I::integratedScattering, I::integratedTransmittance,
-      I::sceneColor, I::sceneDepth},
-     {I::outputImage}},
+     {B::frame, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
+     {I::outputImage}, true},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,
      {B::frame, I::mediaExtinction, I::sourceImage, I::integratedTransmittance},
@@ -73,8 +77,7 @@ VkDescriptorType descriptorType(BufferKind k) {
     return k == BufferKind::UNIFORM ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
-bool hostWrites(BufferKind k) { return k == BufferKind::UNIFORM || k == BufferKind::STORAGE;
-}
+bool hostWrites(BufferKind k) { return k == BufferKind::UNIFORM || k == BufferKind::STORAGE; }
 
 std::array<BindingDecl, kBindingCount> bindingTable() {
     std::array<BindingDecl, kBindingCount> t{};

@@ -148,6 +148,7 @@ enum class Dispatch : uint8_t {
     Screen,       // one per pixel, SCREEN_GROUP_*
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
+    TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
     Raster,       // the geometry pass's draw (not a dispatch)
 };
 
@@ -195,10 +196,13 @@ struct PassDecl {
     Record record;
     ResList reads;
     ResList writes;
+    // Built with this frame's specialization constants (shaders/shared/specialization.h, pipeline.h
+    // SpecKey): code for what the scene lacks is compiled out. Otherwise the shader's defaults.
+    bool specialized = false;
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 9> kPasses;
+extern const std::array<PassDecl, 10> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

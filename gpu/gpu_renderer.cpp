@@ -127,6 +127,39 @@ Result<GpuRender> GpuRenderer::render(const Scene& scene, const RenderRequest& r
     return renderFrames(scene, request, readBackVolumes, true);
 }
 
+namespace {
+
+// What this scene lets the specialized passes leave out (shaders/shared/specialization.h). Every
+// frame of a render call has the same settings, so one key serves them all.
+SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, const LightReach& reach) {
+    SpecKey k;
+    int kinds = 0;
+    for (const shd::VolumeData& v : cs.volumes) kinds |= 1 << v.kind.x;
+    k[SpecId::SPEC_VOLUME_KINDS] = kinds;
+    int directional = 0;
+    for (int i : reach.surfaceLights)
+        directional += cs.lights[static_cast<size_t>(i)].kind.x == shd::LIGHT_DIRECTIONAL ? 1 : 0;
+    k[SpecId::SPEC_DIRECTIONAL_LIGHTS] = directional;
+    k[SpecId::SPEC_LOCAL_FOG_SHADOWS] = frame.localFogShadows != 0 ? 1 : 0;
+    k[SpecId::SPEC_SUN_SHADOW_MAP] = frame.sunShadowLight != 0 ? 1 : 0;
+    bool localMaps = false;
+    for (const shd::LightData& l : cs.lights) localMaps = localMaps || shd::localShadowMapped(l, frame.localShadowTexels);
+    k[SpecId::SPEC_LOCAL_SHADOW_MAPS] = localMaps ? 1 : 0;
+    k[SpecId::SPEC_VDB_SHADOWS] = frame.vdbShadowSamples > 0 ? 1 : 0;
+    const int distantKinds = (1 << shd::VOLUME_HEIGHT_EXPONENTIAL) | (1 << shd::VOLUME_HEIGHT_LINEAR) | (1 << shd::VOLUME_DEPTH);
+    k[SpecId::SPEC_DISTANT_FOG] = (kinds & distantKinds) != 0 && frame.froxelRange.y < frame.projection.w ? 1 : 0;
+    if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
+        int list = 0;
+        for (size_t i = 0; i < cs.volumes.size(); ++i)
+            list |= BRUME_SPEC_VOLUME_LIST_ENTRY(static_cast<int>(i), cs.volumes[i].kind.x);
+        k[SpecId::SPEC_VOLUME_COUNT] = static_cast<int>(cs.volumes.size());
+        k[SpecId::SPEC_VOLUME_LIST] = list;
+    }
+    return k;
+}
+
+}  // namespace
+
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
     return renderFrames(scene, request, false, false);
 }
@@ -177,10 +210,10 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const glm::ivec3 groupSize(shd::FROXEL_GROUP_X, shd::FROXEL_GROUP_Y, shd::FROXEL_GROUP_Z);
     const FroxelRegion lightFroxels{media.lo,
                                     glm::min(media.lo + (r.mediaExtent + groupSize - 1) / groupSize * groupSize, dims)};
-    const std::vector<int> reach =
-        lightReachRecord(buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!vertices.empty(),
-                                         &lightFroxels),
-                         cs.lights.size());
+    const LightReach lightReach =
+        buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!vertices.empty(), &lightFroxels);
+    const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
+    s_->spec = sceneSpecKey(cs, frame, lightReach);
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).

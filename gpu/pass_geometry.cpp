@@ -56,16 +56,18 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
     return RenderPassOwner(device.vk(), rp);
 }
 
-Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass) {
+Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass,
+                                     const SpecKey& key) {
     Result<ShaderModuleOwner> vert = createShaderModule(device, "geometry.vert");
     if (!vert) return vert.error();
     Result<ShaderModuleOwner> frag = createShaderModule(device, "geometry.frag");
     if (!frag) return frag.error();
+    const Specialization spec(key);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
-                 vert.value().get(), "main", nullptr};
+                 vert.value().get(), "main", &spec.info};
     stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-                 frag.value().get(), "main", nullptr};
+                 frag.value().get(), "main", &spec.info};
 
     const VkVertexInputBindingDescription binding{0, sizeof(GeometryVertex), VK_VERTEX_INPUT_RATE_VERTEX};
     std::array<VkVertexInputAttributeDescription, 4> attrs{};
@@ -116,7 +118,7 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     VkPipeline pipeline = VK_NULL_HANDLE;
     BRUME_VK(vkCreateGraphicsPipelines(device.vk(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
              "create the geometry pipeline");
-    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, "geometry pipeline");
+    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, "geometry pipeline [" + key.text() + "]");
     return PipelineOwner(device.vk(), pipeline);
 }
 
@@ -127,10 +129,19 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     Result<RenderPassOwner> rp = createRenderPass(device);
     if (!rp) return rp.error();
     pass.renderPass_ = std::move(rp.value());
-    Result<PipelineOwner> pipeline = createPipeline(device, layout, pass.renderPass_.get());
-    if (!pipeline) return pipeline.error();
-    pass.pipeline_ = std::move(pipeline.value());
+    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}));
     return pass;
+}
+
+Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key) {
+    auto it = pipelines_.find(key);
+    if (it == pipelines_.end()) {
+        Result<PipelineOwner> pipeline = createPipeline(device, layout, renderPass_.get(), key);
+        if (!pipeline) return pipeline.error();
+        it = pipelines_.emplace(key, std::move(pipeline.value())).first;
+    }
+    pipeline_ = it->second.get();
+    return {};
 }
 
 Result<void> GeometryPass::attach(const Device& device, const FrameResources& r) {
@@ -183,7 +194,7 @@ void GeometryPass::record(const PassContext& ctx) const {
         const VkRect2D scissor{{0, 0}, extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, b.pipelineLayout.get(), 0, 1, &b.set, 0,
                                 nullptr);
         const VkDeviceSize offset = 0;

@@ -3,6 +3,8 @@
 // them. The executor places the barriers (after each pass's start timestamp, see timing.h).
 #pragma once
 
+#include <map>
+
 #include <glm/glm.hpp>
 
 #include "frame_resources.h"
@@ -38,13 +40,16 @@ void recordClearMedia(const PassContext& ctx);
 class GeometryPass {
 public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
+    // Selects (creating on first use) the pipeline specialized for key (pipeline.h SpecKey).
+    Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key);
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
     void record(const PassContext& ctx) const;
 
 private:
     RenderPassOwner renderPass_;
-    PipelineOwner pipeline_;
+    std::map<SpecKey, PipelineOwner> pipelines_;  // by specialization key
+    VkPipeline pipeline_ = VK_NULL_HANDLE;         // the one usePipeline chose
     GpuImage depthBuffer_;  // d32, depth test only
     FramebufferOwner framebuffer_;
 };

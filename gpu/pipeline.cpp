@@ -2,6 +2,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "frame_resources.h"
@@ -129,7 +130,26 @@ Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* n
     return ShaderModuleOwner(device.vk(), module);
 }
 
-Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader) {
+std::string SpecKey::text() const {
+    std::string t;
+    for (size_t i = 0; i < values.size(); ++i) t += (i ? "," : "") + std::to_string(values[i]);
+    return t;
+}
+
+Specialization::Specialization(const SpecKey& key) {
+#define BRUME_CPP_SPEC_ENTRY(name, id, value)                                                                  \
+    entries.push_back({static_cast<uint32_t>(id), static_cast<uint32_t>(sizeof(int32_t) * static_cast<size_t>(SpecId::name)), \
+                       sizeof(int32_t)});
+    BRUME_SPEC_CONSTANTS(BRUME_CPP_SPEC_ENTRY)
+#undef BRUME_CPP_SPEC_ENTRY
+    info.mapEntryCount = static_cast<uint32_t>(entries.size());
+    info.pMapEntries = entries.data();
+    info.dataSize = sizeof(key.values);
+    info.pData = key.values.data();
+}
+
+Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader,
+                                      const SpecKey* spec) {
     Result<ShaderModuleOwner> module = createShaderModule(device, shader.c_str());
     if (!module) return module.error();
     VkComputePipelineCreateInfo info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
@@ -137,22 +157,26 @@ Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout lay
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module.value().get();
     info.stage.pName = "main";
+    std::optional<Specialization> specialization;
+    if (spec) info.stage.pSpecializationInfo = &specialization.emplace(*spec).info;
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     BRUME_VK(vkCreateComputePipelines(device.vk(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
              "create the " + shader + " pipeline");
-    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, shader);
+    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, spec ? shader + " [" + spec->text() + "]" : shader);
     ComputePass pass;
     pass.pipeline = PipelineOwner(device.vk(), pipeline);
     pass.shader = shader;
     return pass;
 }
 
-Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLayout layout, const std::string& shader) {
-    if (auto it = passes_.find(shader); it != passes_.end()) return &it->second;
-    Result<ComputePass> p = createComputePass(device, layout, shader);
+Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLayout layout, const std::string& shader,
+                                              const SpecKey* spec) {
+    const std::string key = spec ? shader + "#" + spec->text() : shader;
+    if (auto it = passes_.find(key); it != passes_.end()) return &it->second;
+    Result<ComputePass> p = createComputePass(device, layout, shader, spec);
     if (!p) return p.error();
-    return &passes_.emplace(shader, std::move(p.value())).first->second;
+    return &passes_.emplace(key, std::move(p.value())).first->second;
 }
 
 void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings) {

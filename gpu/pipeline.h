@@ -2,11 +2,16 @@
 // pipeline layout, shader modules from the embedded SPIR-V, compute pipelines and barriers.
 #pragma once
 
+#include <array>
+#include <compare>
+#include <cstdint>
 #include <map>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "resources.h"
+#include "shaders/shared/specialization.h"
 
 namespace brume::gpu {
 
@@ -33,6 +38,39 @@ void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const Fr
 // Called before recording each frame (the set is not in use then: the previous frame has finished).
 void writeHistoryBindings(const Device& device, VkDescriptorSet set, const FrameResources& r, int writeIndex);
 
+// The values of shaders/shared/specialization.h's constants, in constant_id order. A default key is
+// the shaders' own defaults (nothing left out).
+enum class SpecId : uint8_t {
+#define BRUME_CPP_SPEC_ID(name, id, value) name,
+    BRUME_SPEC_CONSTANTS(BRUME_CPP_SPEC_ID)
+#undef BRUME_CPP_SPEC_ID
+};
+struct SpecKey {
+    std::array<int32_t, 0
+#define BRUME_CPP_SPEC_COUNT(name, id, value) +1
+                        BRUME_SPEC_CONSTANTS(BRUME_CPP_SPEC_COUNT)
+#undef BRUME_CPP_SPEC_COUNT
+               >
+        values{
+#define BRUME_CPP_SPEC_DEFAULT(name, id, value) value,
+            BRUME_SPEC_CONSTANTS(BRUME_CPP_SPEC_DEFAULT)
+#undef BRUME_CPP_SPEC_DEFAULT
+        };
+    int32_t& operator[](SpecId id) { return values[static_cast<size_t>(id)]; }
+    int32_t operator[](SpecId id) const { return values[static_cast<size_t>(id)]; }
+    auto operator<=>(const SpecKey&) const = default;
+    std::string text() const;  // "k0,k1,...": part of a pipeline's debug name
+};
+
+// A VkSpecializationInfo pointing into its own entries and the key's values (keep both alive).
+struct Specialization {
+    std::vector<VkSpecializationMapEntry> entries;
+    VkSpecializationInfo info{};
+    explicit Specialization(const SpecKey& key);
+    Specialization(const Specialization&) = delete;
+    Specialization& operator=(const Specialization&) = delete;
+};
+
 // name: a shader file name from shaders/, e.g. "voxelize.comp".
 Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* name);
 
@@ -42,17 +80,20 @@ struct ComputePass {
     std::string shader;  // the embedded SPIR-V's name, also the pipeline's debug name
 };
 
-Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader);
+// spec: the specialization constants' values; null = none given (the shader's defaults).
+Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader,
+                                      const SpecKey* spec = nullptr);
 
-// One pipeline per shader variant, created on first use (lavapipe compiles a pipeline in 10-100 ms,
-// so a variant a scene never needs is never built).
+// One pipeline per shader variant and specialization key, created on first use (lavapipe compiles a
+// pipeline in 10-100 ms, so a variant a scene never needs is never built).
 class PipelineCache {
 public:
-    Result<const ComputePass*> get(const Device& device, VkPipelineLayout layout, const std::string& shader);
+    Result<const ComputePass*> get(const Device& device, VkPipelineLayout layout, const std::string& shader,
+                                   const SpecKey* spec = nullptr);
     size_t size() const { return passes_.size(); }
 
 private:
-    std::map<std::string, ComputePass> passes_;
+    std::map<std::string, ComputePass> passes_;  // by shader name, plus "#" and the key when specialized
 };
 
 void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings);

@@ -25,6 +25,7 @@ struct GpuRenderer::State {
     GeometryPass geometry;
     PipelineCache pipelines;          // one per shader variant (frame_table.h variantShaderName)
     VariantKey variant;               // this frame's
+    SpecKey spec;                     // this scene's specialization constants (passes marked specialized)
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change

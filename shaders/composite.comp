@@ -1,11 +1,11 @@
 // Pass 4: fog over the rasterized scene, read from the integrated volume with the shared lookup
-// rule (shd::integratedLookup; core: sampleIntegrated / compositeRow), then continued in closed
-// form from the froxel far to the surface (shared/distant.h; core: accumulateDistantFog).
+// rule (shd::integratedLookup; core: sampleIntegrated / compositeRow), then continued from the
+// froxel far to the surface with the distant fog table (shared/distant_table.h, distant_fog.comp).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
-#include "fog_shadow.glsl"
+#include "distant_table.h"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
 
@@ -31,37 +31,31 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
     return mixAccumulated(emptyAccumulated(), entries, k.entryWeight);
 }
 
-// Height and depth fog along the camera ray between ray distances s0 and s1, lit by the
-// directional lights (times the fog transmittance toward them, per piece) and the ambient.
-// Each light's transmittance is evaluated once per piece, outside the loop over volumes (it does
-// not depend on the volume): inside it, the pass cost O(volumes^2) transmittance terms per piece.
-Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
-    if (!(s1 > s0)) return a;
-    // The surface lights (core/light_reach.h) hold every directional light that shines, in
-    // increasing order, before any other: the CPU's sum over all lights, stopping at the first
-    // local one (a skipped trip would cost as much as a taken one on lavapipe).
-    int reach = lightReachOffset(frame.froxelDims.xyz);
-    int pieces = distantShadowPieceCount(s0, s1);
-    for (int piece = 0; piece < pieces; ++piece) {
-        vec2 b = distantShadowPiece(s0, s1, piece, pieces);
-        vec3 middle = frame.cameraPosition.xyz + dir * sqrt(b.x * b.y);
-        DistantSegment seg = emptyDistantSegment();
-        for (int i = 0; i < frame.counts.z; ++i) {
-            float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
-            seg = addDistantVolume(seg, volumes[i], len, frame.ambient.rgb);
-        }
-        for (int k = 0; k < lightClusters[reach]; ++k) {
-            int j = lightClusters[reach + 1 + k];
-            if (lights[j].kind.x != LIGHT_DIRECTIONAL) break;
-            vec3 t = lightFogTransmittance(lights[j], middle, -lights[j].direction.xyz, BRUME_HUGE);
-            for (int i = 0; i < frame.counts.z; ++i) {
-                float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, b.x, b.y);
-                seg = addDistantLight(seg, volumes[i], len, distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w) * t);
-            }
-        }
-        a = accumulateDistant(a, seg);
-    }
+// The distant fog table (shared/distant_table.h) at one corner and entry.
+Accumulated distantTableAt(ivec2 corners, int x, int y, int j) {
+    Accumulated a;
+    if (j <= 0) return emptyAccumulated();
+    int index = distantTableIndex(corners, ivec2(x, y), j);
+    a.scattering = distantTable[index].rgb;
+    a.transmittance = distantTable[index + 1].rgb;
     return a;
+}
+
+// Height and depth fog from the froxel far to viewDepth: the 4 corners around the pixel blended
+// bilinearly at entries j-1 and j, then between the two in ray distance.
+Accumulated distantFogAt(vec2 pixel, float viewDepth) {
+    ivec2 corners = distantTableCorners(frame.counts.xy);
+    DistantTableLookup k = distantTableLookup(pixel, viewDepth, frame, distantTableEntries(frame));
+    Accumulated byEntry[2];
+    for (int e = 0; e < 2; ++e) {
+        int j = k.entry - 1 + e;
+        Accumulated row0 = mixAccumulated(distantTableAt(corners, k.corners.x, k.corners.y, j),
+                                          distantTableAt(corners, k.corners.z, k.corners.y, j), k.weights.x);
+        Accumulated row1 = mixAccumulated(distantTableAt(corners, k.corners.x, k.corners.w, j),
+                                          distantTableAt(corners, k.corners.z, k.corners.w, j), k.weights.x);
+        byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
+    }
+    return distantTableBlend(byEntry[0], byEntry[1], k.blend);
 }
 
 void main() {
@@ -72,13 +66,8 @@ void main() {
     vec2 pixel = vec2(px) + vec2(0.5f);
     Accumulated fog = sampleIntegrated(pixel, viewDepth);
     float froxelFar = frame.froxelRange.y;
-    if (viewDepth > froxelFar) {
-        // viewRay has z = -1: ray distance = view depth * its length.
-        vec3 viewRay = viewRayFromPixel(pixel, frame);
-        float rayPerDepth = length(viewRay);
-        vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
-        fog = accumulateDistantFog(fog, dir, froxelFar * rayPerDepth, viewDepth * rayPerDepth);
-    }
+    // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; the closed form is compiled out.
+    if (SPEC_DISTANT_FOG != 0 && viewDepth > froxelFar) fog = composeAccumulated(fog, distantFogAt(pixel, viewDepth));
     vec3 color = compositeFog(background, fog);
     imageStore(outputImage, px, vec4(color, 1.0f));
 }

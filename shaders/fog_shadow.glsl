@@ -1,9 +1,26 @@
 // The GPU's loop over volumes around the shared closed forms of shared/shadows.h (core:
 // lightFogTransmittance): the fog's transmittance from p toward light l.
+// Specialized pipelines (shared/specialization.h) compile out the point/spot and vdb cases a scene lacks.
+int localFogShadowsFlag() { return SPEC_LOCAL_FOG_SHADOWS != 0 ? frame.localFogShadows : 0; }
+
+// Volume i's kind in a pipeline specialized with the scene's volume list (SPEC_VOLUME_COUNT >= 0).
+int listedVolumeKind(int i) { return BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i); }
+
 vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(l, frame.localFogShadows)) return vec3(1.0f);
+    if (!fogShadowsLight(l, localFogShadowsFlag())) return vec3(1.0f);
     vec3 tau = vec3(0.0f);
-    for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumes[i], p, toLight, distance);
+    if (SPEC_VOLUME_COUNT >= 0) {
+        // Unrolled by hand with each volume's kind a constant: only that kind's closed form is
+        // built for it (a loop would run every kind's code for every volume on lavapipe).
+#define BRUME_LISTED_VOLUME(i) \
+    if (i < SPEC_VOLUME_COUNT) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumes[i], p, toLight, distance);
+        BRUME_LISTED_VOLUME(0) BRUME_LISTED_VOLUME(1) BRUME_LISTED_VOLUME(2) BRUME_LISTED_VOLUME(3)
+        BRUME_LISTED_VOLUME(4) BRUME_LISTED_VOLUME(5) BRUME_LISTED_VOLUME(6) BRUME_LISTED_VOLUME(7)
+        BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)
+#undef BRUME_LISTED_VOLUME
+    } else {
+        for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumes[i], p, toLight, distance);
+    }
     return exp(-tau);
 }
 
@@ -22,7 +39,7 @@ ShadowBlend blendShadowCells(int light, ShadowLookup k) {
 // Light `light`'s vdb layer blended at k (core: vdbLayerBlend; shared/vdb_shadow.h): 1 without vdb
 // shadows. No exact fallback: only the shadow volume pass marches grids.
 vec3 vdbShadowBlend(int light, ShadowLookup k) {
-    if (frame.vdbShadowSamples <= 0) return vec3(1.0f);
+    if (SPEC_VDB_SHADOWS == 0 || frame.vdbShadowSamples <= 0) return vec3(1.0f);
     return vdbShadowTransmittance(blendShadowCells(vdbShadowLayer(light, frame.counts.w), k).transmittance);
 }
 
@@ -30,7 +47,7 @@ vec3 vdbShadowBlend(int light, ShadowLookup k) {
 // blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
 // k: shadowLookup of the froxel, computed once for all lights.
 vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
+    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, k);
     ShadowBlend b = blendShadowCells(light, k);
     if (b.trusted) return b.transmittance * vdb;
@@ -40,7 +57,7 @@ vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, flo
 // Surfaces (core: surfaceFogTransmittance): the volume inside the grid, exact outside and at edges.
 // s: shadowLookupAt of p, computed once for all lights.
 vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
+    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
     if (s.inside) {
         ShadowBlend b = blendShadowCells(light, s.k);

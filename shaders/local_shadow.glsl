@@ -2,7 +2,7 @@
 // unmapped lights and outside a spot's face.
 float localShadowVisibility(int i, vec3 p) {
     int n = frame.localShadowTexels;
-    if (!localShadowMapped(lights[i], n)) return 1.0f;
+    if (SPEC_LOCAL_SHADOW_MAPS == 0 || !localShadowMapped(lights[i], n)) return 1.0f;
     LocalShadowLookup k = localShadowLookup(lights[i], n, p);
     if (!k.inside) return 1.0f;
     return localShadowPcf(k, localShadowDepth[localShadowIndex(k, n, ivec2(0, 0))],

@@ -1,7 +1,7 @@
 // Visibility of light i at p through the sun shadow map (core: sunShadowVisibility): 1 for lights
 // the map does not serve and outside the map.
 float sunShadowVisibility(int i, vec3 p) {
-    if (!sunShadowMapped(frame, i)) return 1.0f;
+    if (SPEC_SUN_SHADOW_MAP == 0 || !sunShadowMapped(frame, i)) return 1.0f;
     SunShadowLookup k = sunShadowLookup(sunShadowFit, p);
     if (!k.inside) return 1.0f;
     return sunShadowPcf(k, sunShadowDepth[sunShadowIndex(sunShadowFit, k.texel)],
@@ -13,7 +13,7 @@ float sunShadowVisibility(int i, vec3 p) {
 // The same for a froxel's sample point (core: sunShadowFroxelVisibility): the map's froxel layer,
 // which shadows the fog inside solids (shared/sun_shadow.h).
 float sunShadowFroxelVisibility(int i, vec3 p) {
-    if (!sunShadowMapped(frame, i)) return 1.0f;
+    if (SPEC_SUN_SHADOW_MAP == 0 || !sunShadowMapped(frame, i)) return 1.0f;
     SunShadowLookup k = sunShadowLookup(sunShadowFit, p);
     if (!k.inside) return 1.0f;
     return sunShadowPcf(k, sunShadowDepth[sunShadowFroxelIndex(sunShadowFit, k.texel)],

@@ -10,6 +10,7 @@
 #include "core/compile.h"
 #include "core/quality.h"
 #include "shaders/shared/brume.h"
+#include "shaders/shared/distant_table.h"
 
 using namespace brume;
 
@@ -338,6 +339,56 @@ TEST(Distant, OneMediumSegmentEqualsFineSlabMarch) {
         EXPECT_NEAR(closed.transmittance[c], march.transmittance[c], 1e-3 * march.transmittance[c] + 1e-6);
         EXPECT_NEAR(closed.scattering[c], march.scattering[c], 1e-3 * march.scattering[c]);
     }
+}
+
+// The distant fog table's step blend (shared/distant_table.h): between two accumulation states of one
+// homogeneous medium it gives exactly the state at the intermediate distance.
+TEST(DistantTable, BlendWithinAHomogeneousStepIsExact) {
+    const glm::vec3 source(0.02f, 0.05f, 0.1f), sigmaT(0.01f, 0.08f, 0.5f);
+    const shd::Accumulated front = shd::accumulateSlab(shd::emptyAccumulated(), glm::vec3(0.3f), glm::vec3(0.2f), 1.0f);
+    const float d = 12.0f;
+    const shd::Accumulated a1 = shd::accumulateSlab(front, source, sigmaT, d);
+    for (float b : {0.0f, 0.1f, 0.5f, 0.9f, 1.0f}) {
+        const shd::Accumulated exact = shd::accumulateSlab(front, source, sigmaT, b * d);
+        const shd::Accumulated blended = shd::distantTableBlend(front, a1, b);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(blended.transmittance[c], exact.transmittance[c], 1e-5f) << b;
+            EXPECT_NEAR(blended.scattering[c], exact.scattering[c], 1e-5f * (1.0f + exact.scattering[c])) << b;
+        }
+    }
+    // No medium: nothing changes, nothing divides by zero.
+    const shd::Accumulated same = shd::distantTableBlend(front, front, 0.5f);
+    EXPECT_EQ(same.transmittance, front.transmittance);
+    EXPECT_EQ(same.scattering, front.scattering);
+}
+
+// Entries from the froxel far to the camera far: the sky (camera far) reads the last entry exactly,
+// every pixel's corners exist, and the steps never exceed the table's ratio unless capped.
+TEST(DistantTable, EntriesCoverTheFroxelFarToTheCameraFar) {
+    shd::FrameUniforms f{};
+    f.counts = glm::ivec4(1281, 719, 0, 0);
+    f.projection = glm::vec4(1.0f, 1.0f, 0.1f, 100.0f);
+    f.froxelRange = glm::vec4(0.1f, 48.0f, 2.0f, 0.0f);
+    const int n = shd::distantTableEntries(f);
+    ASSERT_GE(n, 1);
+    ASSERT_LE(n, shd::DISTANT_TABLE_DEPTHS);
+    for (int j = 1; j <= n; ++j) {
+        EXPECT_GT(shd::distantTableDepth(f, j, n), shd::distantTableDepth(f, j - 1, n));
+        EXPECT_LE(shd::distantTableDepth(f, j, n) / shd::distantTableDepth(f, j - 1, n), shd::DISTANT_TABLE_RATIO * 1.0001f);
+    }
+    EXPECT_EQ(shd::distantTableDepth(f, n, n), 100.0f);
+    const shd::DistantTableLookup sky = shd::distantTableLookup(glm::vec2(640.5f, 300.5f), 100.0f, f, n);
+    EXPECT_EQ(sky.entry, n);
+    EXPECT_FLOAT_EQ(sky.blend, 1.0f);
+    const shd::DistantTableLookup near = shd::distantTableLookup(glm::vec2(0.5f, 0.5f), 48.001f, f, n);
+    EXPECT_EQ(near.entry, 1);
+    EXPECT_LT(near.blend, 1e-3f);
+    const glm::ivec2 corners = shd::distantTableCorners(glm::ivec2(f.counts));
+    const shd::DistantTableLookup last = shd::distantTableLookup(glm::vec2(1280.5f, 718.5f), 60.0f, f, n);
+    EXPECT_LT(last.corners.z, corners.x);
+    EXPECT_LT(last.corners.w, corners.y);
+    f.froxelRange.y = 100.0f;  // the froxels reach the camera far: no table
+    EXPECT_EQ(shd::distantTableEntries(f), 0);
 }
 
 TEST(Distant, ExtremesStayFinite) {

@@ -2,6 +2,7 @@
 #ifndef BRUME_SHARED_H
 #define BRUME_SHARED_H
 #include "common.h"
+#include "specialization.h"
 #include "types.h"
 #include "froxel.h"
 #include "media.h"

@@ -14,6 +14,7 @@
 #include "integrate.h"
 #include "lighting.h"
 #include "media.h"
+#include "specialization.h"
 
 BRUME_NAMESPACE_BEGIN
 
@@ -77,9 +78,11 @@ BRUME_FUNC float distantDensityLength(VolumeData v, vec3 origin, vec3 dir, float
     if (s1 <= s0) return 0.0f;
     int k = v.kind.x;
     float y0 = origin.y + dir.y * s0;
-    if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialLength(y0, dir.y, s1 - s0, v.params.x, v.params.y);
-    if (k == VOLUME_HEIGHT_LINEAR) return heightLinearLength(y0, dir.y, s1 - s0, v.params.x, v.params.y);
-    if (k == VOLUME_DEPTH) return depthFogLength(s0, s1, v.params.y, v.params.x);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_EXPONENTIAL) && k == VOLUME_HEIGHT_EXPONENTIAL)
+        return heightExponentialLength(y0, dir.y, s1 - s0, v.params.x, v.params.y);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_LINEAR) && k == VOLUME_HEIGHT_LINEAR)
+        return heightLinearLength(y0, dir.y, s1 - s0, v.params.x, v.params.y);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_DEPTH) && k == VOLUME_DEPTH) return depthFogLength(s0, s1, v.params.y, v.params.x);
     return 0.0f;
 }
 

@@ -30,7 +30,8 @@
     X(lightClusters, 7, STORAGE, std430, readonly buffer, ClusterBlock, int lightClusters[];) \
     X(sunShadowMap, 8, STORAGE, std430, readonly buffer, SunShadowBlock, SunShadowFit sunShadowFit; float sunShadowDepth[];) \
     X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];) \
-    X(exactList, 23, STORAGE_INDIRECT, std430, buffer, ExactListBlock, ExactListHeader exactList; uint exactFroxels[];)
+    X(exactList, 23, STORAGE_INDIRECT, std430, buffer, ExactListBlock, ExactListHeader exactList; uint exactFroxels[];) \
+    X(distantTable, 24, STORAGE_GPU, std430, buffer, DistantTableBlock, vec4 distantTable[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -47,6 +48,8 @@
 //   localShadowMaps     float[]: every point/spot shadow map face (local_shadow.h), built on the host
 //   exactList           ExactListHeader, then uint[] (bindings.h): the froxels whose fog transmittance
 //                       the light pass left to the exact pass, and that pass's indirect dispatch
+//   distantTable        vec4[]: the distant fog per tile corner and depth (distant_table.h), written
+//                       by the distant fog pass, read by the composite
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

@@ -115,20 +115,31 @@ BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
 
 // Integral of one volume's density from p along unit dir over [0, maxDist] (BRUME_HUGE: to
 // infinity, a directional light). Depth and VDB volumes: 0 (see the header comment).
-BRUME_FUNC float shadowDensityLength(VolumeData v, vec3 p, vec3 dir, float maxDist) {
-    int k = v.kind.x;
-    if (k == VOLUME_BOX) return boxDensityLength(v, p, dir, maxDist);
-    if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
-    if (k == VOLUME_HEIGHT_LINEAR) return heightLinearLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
+// k: v's kind (a constant where the caller knows it: fog_shadow.glsl).
+BRUME_FUNC float shadowDensityLengthOfKind(int k, VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    // BRUME_VOLUME_KIND_USED: a kind the scene lacks is compiled out of specialized pipelines.
+    if (BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) return boxDensityLength(v, p, dir, maxDist);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_EXPONENTIAL) && k == VOLUME_HEIGHT_EXPONENTIAL)
+        return heightExponentialLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_LINEAR) && k == VOLUME_HEIGHT_LINEAR)
+        return heightLinearLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
     return 0.0f;
 }
 
 // Optical depth of one volume toward a light (sigma_t x density length); sum over volumes, then
 // exp(-sum) is the transmittance. Finite or +inf, never NaN.
-BRUME_FUNC vec3 shadowOpticalDepth(VolumeData v, vec3 p, vec3 dir, float maxDist) {
-    float len = shadowDensityLength(v, p, dir, maxDist);
+BRUME_FUNC float shadowDensityLength(VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    return shadowDensityLengthOfKind(v.kind.x, v, p, dir, maxDist);
+}
+
+BRUME_FUNC vec3 shadowOpticalDepthOfKind(int k, VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    float len = shadowDensityLengthOfKind(k, v, p, dir, maxDist);
     if (len <= 0.0f) return vec3(0.0f);
     return (vec3(v.sigmaS_g) + vec3(v.sigmaA)) * len;
+}
+
+BRUME_FUNC vec3 shadowOpticalDepth(VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    return shadowOpticalDepthOfKind(v.kind.x, v, p, dir, maxDist);
 }
 
 // Whether the fog's transmittance toward light l is evaluated: directional lights always (the sun's

@@ -1,0 +1,39 @@
+// Specialization constants: what a compiled scene lets a pass's pipeline leave out, declared once for
+// GLSL (layout(constant_id = N) const int) and C++ (gpu/pipeline.h SpecKey, VkSpecializationInfo).
+// Lavapipe runs both sides of every branch (docs/performance.md): code behind a condition that is
+// never true in this scene still costs its full price, unless the condition is a constant when the
+// pipeline is built, which removes the code. Each default means "not specialized": a pipeline built
+// without the constants (the CPU, a pass the table does not specialize) behaves as before.
+// X(name, constant_id, default); every constant is a 32-bit int.
+#ifndef BRUME_SHARED_SPECIALIZATION_H
+#define BRUME_SHARED_SPECIALIZATION_H
+
+#define BRUME_SPEC_CONSTANTS(X)                                                                              \
+    X(SPEC_VOLUME_KINDS, 0, -1)        /* bit (1 << VOLUME_*) per volume kind in the scene; -1: all */    \
+    X(SPEC_DIRECTIONAL_LIGHTS, 1, -1)  /* directional surface lights (light reach); -1: read the list */  \
+    X(SPEC_LOCAL_FOG_SHADOWS, 2, 1)    /* 0: frame.localFogShadows is 0 */                                 \
+    X(SPEC_SUN_SHADOW_MAP, 3, 1)       /* 0: no sun shadow map (frame.sunShadowLight is 0) */              \
+    X(SPEC_LOCAL_SHADOW_MAPS, 4, 1)    /* 0: no point/spot light has a shadow map */                       \
+    X(SPEC_VDB_SHADOWS, 5, 1)          /* 0: frame.vdbShadowSamples is 0 */                                \
+    X(SPEC_DISTANT_FOG, 6, 1)          /* 0: no height or depth fog (nothing past the froxel far) */       \
+    X(SPEC_VOLUME_COUNT, 7, -1)        /* volumes, when SPEC_VOLUME_LIST holds each one's kind; -1: not */ \
+    X(SPEC_VOLUME_LIST, 8, 0)          /* VOLUME_* of volume i in bits 3i..3i+2 (SPEC_MAX_LISTED_VOLUMES) */
+
+// Scenes with at most this many volumes get each volume's kind as a constant (SPEC_VOLUME_LIST):
+// volume i's VOLUME_* (0..4) in 3 bits, packed and unpacked by these two macros on both sides.
+#define SPEC_MAX_LISTED_VOLUMES 10
+#define BRUME_SPEC_VOLUME_LIST_ENTRY(i, kind) ((kind) << (3 * (i)))
+#define BRUME_SPEC_LISTED_KIND(list, i) (((list) >> (3 * (i))) & 7)
+
+#ifdef __cplusplus
+// The CPU evaluates every kind.
+#define BRUME_VOLUME_KIND_USED(k) true
+#else
+#define BRUME_GLSL_SPEC_CONSTANT(name, id, value) layout(constant_id = id) const int name = value;
+BRUME_SPEC_CONSTANTS(BRUME_GLSL_SPEC_CONSTANT)
+#undef BRUME_GLSL_SPEC_CONSTANT
+// Whether volume kind k can occur in this pipeline's scene (a constant once specialized).
+#define BRUME_VOLUME_KIND_USED(k) ((SPEC_VOLUME_KINDS & (1 << (k))) != 0)
+#endif
+
+#endif
