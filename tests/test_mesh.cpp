@@ -302,3 +302,22 @@ TEST_F(Mesh, BadMeshesExitTwoFromTheCommandLine) {
         EXPECT_FALSE(fs::exists(dir_ / "out.png")) << file;
     }
 }
+
+// `brume bake` bakes a hull like any volume: sigma_t inside, nothing outside.
+TEST_F(Mesh, BakeWritesTheHullsSigmaT) {
+    write("hull.obj", test::cubeObj());
+    const std::string scene = write("scene.json", R"({"brume_scene": 1, "volumes": [{"type": "mesh", "file": "hull.obj",
+        "edge_fade_m": 0.2, "medium": {"scattering": [0.5, 0.5, 0.5], "absorption": [0.25, 0.25, 0.25]}}]})");
+    const std::string out = (dir_ / "baked.vdb").string();
+    const std::string cmd = test::quoted(BRUME_EXE) + " bake " + test::quoted(scene) + " -o " + test::quoted(out) +
+                            " --voxel-size 0.1 >/dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    Result<VdbLoad> baked = loadVdbDensity(out, {});
+    ASSERT_TRUE(baked.ok()) << baked.error().message;
+    const DensityGrid& g = *baked.value().grid;
+    const glm::mat4 indexFromWorld = glm::inverse(g.gridFromIndex());
+    auto at = [&](glm::vec3 p) { return g.sampleIndex(glm::vec3(indexFromWorld * glm::vec4(p, 1.0f))); };
+    EXPECT_NEAR(at({0.0f, 0.0f, 0.0f}), 0.75f, 1e-4);
+    EXPECT_NEAR(at({0.5f, -0.6f, 0.3f}), 0.75f, 1e-4);
+    EXPECT_EQ(at({1.5f, 0.0f, 0.0f}), 0.0f);
+}
