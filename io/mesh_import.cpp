@@ -190,7 +190,8 @@ Result<VdbLoad> loadMeshDensityInProcess(const std::string& path, float edgeFade
     for (const glm::vec3& p : mesh.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     if (!(extent > 0.0f) || !std::isfinite(extent))
-        return Error{path + ": the mesh has no extent (all its vertices are at one point)."};
+        return Error{path + ": the mesh has no usable extent (all its vertices at one point, or coordinates too large for "
+                            "a float)."};
     const float fade = std::max(edgeFadeM, 0.0f);
     const float voxel = meshVoxelSize(extent, fade);
 
