@@ -23,9 +23,9 @@ struct Target {
 };
 
 constexpr unsigned bit(auto type) { return 1u << static_cast<unsigned>(type); }
-constexpr unsigned kAllVolumes = 0xFu;
+constexpr unsigned kAllVolumes = 0x1Fu;
 constexpr unsigned kAllLights = 0x7u;
-constexpr unsigned kTransformed = bit(VolumeType::Box) | bit(VolumeType::Vdb);
+constexpr unsigned kTransformed = bit(VolumeType::Box) | bit(VolumeType::Vdb) | bit(VolumeType::Mesh);
 constexpr unsigned kLocal = bit(LightType::Point) | bit(LightType::Spot);
 
 // Every numeric setting of a volume, save the density texture's scroll (keying a speed would move the

@@ -107,6 +107,10 @@ shd::VolumeData compileVolume(const Volume& v) {
             d.params.y = v.start_distance;
             break;
         case VolumeType::Vdb: compileVdb(v, d); break;
+        case VolumeType::Mesh:  // a fog grid made from the mesh at load: sampled as a vdb volume, density x 1
+            compileVdb(v, d);
+            d.params.x = 1.0f;
+            break;
     }
     compileTexture(v, d);
     return d;

@@ -51,6 +51,7 @@ const char* toString(VolumeType t) {
         case VolumeType::Height: return "height";
         case VolumeType::Depth: return "depth";
         case VolumeType::Vdb: return "vdb";
+        case VolumeType::Mesh: return "mesh";
     }
     return "?";
 }

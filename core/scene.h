@@ -117,14 +117,14 @@ struct DensityTexture {
     bool operator==(const DensityTexture&) const = default;
 };
 
-enum class VolumeType { Box, Height, Depth, Vdb };
+enum class VolumeType { Box, Height, Depth, Vdb, Mesh };
 enum class HeightProfile { Exponential, Linear };
 
 // One struct for every volume type; only the fields of its type are read and written.
 struct Volume {
     VolumeType type = VolumeType::Box;
     std::string name;
-    Transform transform;                                       // box, vdb
+    Transform transform;                                       // box, vdb, mesh
     float edge_fade = settings::volume_edge_fade.f();          // box
     float base_height = settings::volume_base_height.f();      // height
     HeightProfile profile = HeightProfile::Exponential;        // height
@@ -132,12 +132,14 @@ struct Volume {
     float transition_height = settings::volume_transition_height.f();  // height, linear
     float visibility_distance = settings::volume_visibility_distance.f();  // depth
     float start_distance = settings::volume_start_distance.f();            // depth
-    std::string file;                                          // vdb, as written in the scene
+    std::string file;                                          // vdb, mesh: as written in the scene
+    float edge_fade_m = settings::volume_edge_fade_m.f();      // mesh
     std::string grid = "density";                              // vdb
     VdbEncoding encoding = VdbEncoding::Float;                 // vdb, the same for all of a scene's
     float density_scale = settings::volume_density_scale.f();  // vdb
-    // vdb: the grid read from `file` by io/vdb_import.h (loadSceneGrids); not serialized. Null until
-    // loaded: an unloaded vdb volume is empty.
+    // vdb: the grid read from `file` by io/vdb_import.h (loadSceneGrids); mesh: the fog grid made from
+    // the mesh (io/mesh_import.h), sampled like a vdb grid. Not serialized. Null until loaded: an
+    // unloaded vdb or mesh volume is empty.
     DensityGridPtr density;
     std::optional<DensityTexture> density_texture;             // any type
     Medium medium;

@@ -70,7 +70,7 @@ inline constexpr Setting light_fog_scale  {"lights[].fog_scale", K::Number, "", 
 inline constexpr Setting light_inner_deg  {"lights[type=spot].inner_deg", K::Number, "deg", 0, 179, {20}, "", "Half-angle of full intensity; must not exceed outer_deg."};
 inline constexpr Setting light_outer_deg  {"lights[type=spot].outer_deg", K::Number, "deg", 0, 179, {30}, "", "Half-angle where the cone reaches zero (smoothstep on the cosine in between)."};
 
-inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb", "Kind of fog volume; required."};
+inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb|mesh", "Kind of fog volume; required."};
 inline constexpr Setting volume_name      {"volumes[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting volume_edge_fade {"volumes[type=box].edge_fade", K::Number, "", 0, 1, {0.1}, "", "Fraction of the half-size over which density fades to 0 at the faces; 0 = hard edge."};
 inline constexpr Setting volume_base_height {"volumes[type=height].base_height", K::Number, "m", -kBig, kBig, {0}, "", "Height below which density is 1."};
@@ -84,6 +84,8 @@ inline constexpr Setting volume_grid      {"volumes[type=vdb].grid", K::String, 
 inline constexpr Setting volume_encoding  {"volumes[type=vdb].encoding", K::Choice, "", 0, 0, {0}, "float|fp16|fp8", "How the grid's values are stored once loaded (CPU and GPU): float (32 bits a voxel), fp16 or fp8 (16 or 8 bits, quantized per 8^3 leaf between its min and max: about 55% and 32% of float's memory; image error against float 6e-7 and 7e-5 on gaffer_smoke). All vdb volumes of a scene use the same encoding (docs/vdb.md)."};
 inline constexpr Setting volume_density_scale {"volumes[type=vdb].density_scale", K::Number, "", 0, kBig, {1}, "", "Multiplies the grid's values."};
 
+inline constexpr Setting volume_mesh_file {"volumes[type=mesh].file", K::String, "", 0, 0, {0}, "", "Closed triangle mesh (Wavefront OBJ), relative to the scene file's folder, turned into a fog grid inside its surface at load (a fog hull; docs/vdb.md, \"Mesh fog hulls\"). Required. A mesh with holes (an edge of an odd number of triangles), no triangles, a non-finite vertex or more than 2,000,000 triangles is refused."};
+inline constexpr Setting volume_edge_fade_m {"volumes[type=mesh].edge_fade_m", K::Number, "m", 0, kBig, {0.1}, "", "Depth inside the mesh's surface over which density rises from 0 to 1 (smoothstep of the distance to the surface, in the mesh's own units, before the transform's scale); 0 = hard edge (a one-voxel ramp centred on the surface). Sets the voxel size: edge_fade_m / 4, between 1/128 and 1/32 of the mesh's longest side."};
 inline constexpr Setting texture_file     {"volumes[].density_texture.file", K::String, "", 0, 0, {0}, "", "OpenVDB file of a noise grid tiled through world space that modulates the volume's density, relative to the scene file's folder. Required in density_texture (docs/vdb.md)."};
 inline constexpr Setting texture_grid     {"volumes[].density_texture.grid", K::String, "", 0, 0, {0}, "", "Grid name in the texture file (default: density; the same choice rules as a vdb volume's grid)."};
 inline constexpr Setting texture_tile_size {"volumes[].density_texture.tile_size_m", K::Number, "m", 1e-3, kBig, {10}, "", "Edge of the cube in world space that one copy of the grid's active box fills; the grid repeats every tile_size_m along X, Y and Z."};
@@ -121,7 +123,7 @@ inline constexpr std::array kAll = {
     &light_shadows_local, &light_fog_scale, &light_inner_deg, &light_outer_deg,
     &volume_type, &volume_name, &volume_edge_fade, &volume_base_height, &volume_profile, &volume_falloff,
     &volume_transition_height, &volume_visibility_distance, &volume_start_distance, &volume_file,
-    &volume_grid, &volume_encoding, &volume_density_scale, &texture_file, &texture_grid, &texture_tile_size, &texture_scroll,
+    &volume_grid, &volume_encoding, &volume_density_scale, &volume_mesh_file, &volume_edge_fade_m, &texture_file, &texture_grid, &texture_tile_size, &texture_scroll,
     &texture_strength, &transform_translation, &transform_rotation, &transform_scale,
     &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
     &keys_interpolation, &keys_time, &keys_value,

@@ -144,6 +144,10 @@ BlenderExport exportBlender(const FogSource& source) {
                     out.losses.push_back(label("volumes", i, v.name) + ": grid \"" + v.grid +
                                          "\" picks one of several same-named grids; Blender reads the first.");
                 break;
+            case VolumeType::Mesh:
+                out.losses.push_back(label("volumes", i, v.name) + ": the mesh fog hull " + v.file +
+                                     " is not exported (the script rebuilds analytic and VDB volumes only).");
+                continue;
         }
         if (v.density_texture)
             out.losses.push_back(label("volumes", i, v.name) + ": its density_texture (" + v.density_texture->file +

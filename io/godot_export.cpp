@@ -162,6 +162,10 @@ struct Writer {
             case VolumeType::Vdb:
                 losses.push_back(volumeLabel(v, i) + ": Godot has no VDB grids; " + v.file + " is not exported.");
                 break;
+            case VolumeType::Mesh:
+                losses.push_back(volumeLabel(v, i) + ": Godot's FogVolume shapes are analytic; the mesh fog hull " + v.file +
+                                 " is not exported.");
+                break;
         }
     }
 

@@ -97,7 +97,7 @@ std::string relativeTo(const fs::path& absolute, const std::string& dir) {
 // Applies `f` to every file path of the volumes (vdb file, density texture file).
 void forEachFile(std::vector<Volume>& volumes, const std::function<void(std::string&)>& f) {
     for (Volume& v : volumes) {
-        if (v.type == VolumeType::Vdb) f(v.file);
+        if (v.type == VolumeType::Vdb || v.type == VolumeType::Mesh) f(v.file);
         if (v.density_texture) f(v.density_texture->file);
     }
 }
@@ -176,6 +176,8 @@ Result<void> checkVolumeFiles(const std::vector<Volume>& volumes, const std::str
         std::error_code ec;
         if (v.type == VolumeType::Vdb && !fs::is_regular_file(absoluteFrom(baseDir, v.file), ec))
             return Error{at + ".file: the VDB file " + absoluteFrom(baseDir, v.file).string() + " does not exist"};
+        if (v.type == VolumeType::Mesh && !fs::is_regular_file(absoluteFrom(baseDir, v.file), ec))
+            return Error{at + ".file: the mesh file " + absoluteFrom(baseDir, v.file).string() + " does not exist"};
         if (v.density_texture && !fs::is_regular_file(absoluteFrom(baseDir, v.density_texture->file), ec))
             return Error{at + ".density_texture.file: the VDB file " +
                          absoluteFrom(baseDir, v.density_texture->file).string() + " does not exist"};

@@ -560,7 +560,7 @@ std::vector<std::string> keyableOn(const Volume& v) {
 
 std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path) {
     Obj o(c, v, path, "a volume");
-    const std::optional<VolumeType> type = readType<VolumeType, 4>(c, o, st::volume_type);
+    const std::optional<VolumeType> type = readType<VolumeType, 5>(c, o, st::volume_type);
     if (!type) return std::nullopt;
     o.setWhere(std::string("a ") + toString(*type) + " volume");
     Volume vol;
@@ -587,6 +587,11 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
             readEnum<VdbEncoding, 3>(c, o, st::volume_encoding, vol.encoding);
             readTransform(c, o, vol.transform);
             readFloat(c, o, st::volume_density_scale, vol.density_scale);
+            break;
+        case VolumeType::Mesh:
+            readString(c, o, st::volume_mesh_file, vol.file, Text::NonEmpty, "the mesh file (OBJ) of a mesh volume");
+            readFloat(c, o, st::volume_edge_fade_m, vol.edge_fade_m);
+            readTransform(c, o, vol.transform);
             break;
     }
     readDensityTexture(c, o, vol);
@@ -885,6 +890,11 @@ ojson volumeJson(const Volume& v) {
             j["encoding"] = toString(v.encoding);
             j["transform"] = transformJson(v.transform);
             j["density_scale"] = num(v.density_scale);
+            break;
+        case VolumeType::Mesh:
+            j["file"] = v.file;
+            j["edge_fade_m"] = num(v.edge_fade_m);
+            j["transform"] = transformJson(v.transform);
             break;
     }
     if (v.density_texture) {

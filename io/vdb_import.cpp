@@ -1,4 +1,5 @@
 #include "vdb_import.h"
+#include "mesh_import.h"
 #include "vdb_inprocess.h"
 #include "vdb_stream.h"
 
@@ -368,6 +369,25 @@ Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std
     return {};
 }
 
+Result<void> loadMeshVolume(Volume& v, const Scene& scene, const std::string& sceneFile, size_t i,
+                            uint64_t memoryLimitBytes, std::vector<std::string>& warnings) {
+    fs::path p(v.file);
+    if (p.is_relative()) p = fs::path(scene.baseDir) / p;
+    VdbImportOptions options;
+    options.memoryLimitBytes = memoryLimitBytes;
+    // The GPU samples every grid of a frame with one encoding: the scene's vdb volumes' (float when none).
+    for (const Volume& other : scene.volumes)
+        if (other.type == VolumeType::Vdb) {
+            options.encoding = other.encoding;
+            break;
+        }
+    auto load = loadMeshDensity(p.lexically_normal().string(), v.edge_fade_m, options);
+    if (!load) return Error{sceneFile + ": volumes[" + std::to_string(i) + "].file: " + load.error().message};
+    v.density = load.value().grid;
+    for (std::string& w : load.value().warnings) warnings.push_back(std::move(w));
+    return {};
+}
+
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,
                             std::vector<std::string>& warnings,
                             const std::function<void(const std::string&, float)>& progress) {
@@ -376,6 +396,10 @@ Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t
         if (v.density_texture) {
             Result<void> t = loadDensityTexture(*v.density_texture, scene, sceneFile, i, memoryLimitBytes, warnings);
             if (!t) return t;
+        }
+        if (v.type == VolumeType::Mesh) {
+            Result<void> m = loadMeshVolume(v, scene, sceneFile, i, memoryLimitBytes, warnings);
+            if (!m) return m;
         }
         if (v.type != VolumeType::Vdb) continue;
         fs::path p(v.file);

@@ -72,7 +72,12 @@ inline constexpr uint64_t kVdbProgressBytes = uint64_t(4) << 20;
 Result<void> loadDensityTexture(DensityTexture& texture, const Scene& scene, const std::string& sceneFile, size_t i,
                                 uint64_t memoryLimitBytes, std::vector<std::string>& warnings);
 
-// Loads the grid of every vdb volume (file relative to scene.baseDir) into Volume::density.
+// Makes mesh volume i's fog grid from its file (io/mesh_import.h) into Volume::density, encoded like the
+// scene's vdb volumes. Errors read "SCENE: volumes[i].file: ...".
+Result<void> loadMeshVolume(Volume& volume, const Scene& scene, const std::string& sceneFile, size_t i,
+                            uint64_t memoryLimitBytes, std::vector<std::string>& warnings);
+
+// Loads the grid of every vdb volume (and mesh volume) (file relative to scene.baseDir) into Volume::density.
 // Errors read "SCENE: volumes[i].file: what is wrong"; warnings go to `warnings`.
 // progress(file, fraction), for files of kVdbProgressBytes or more; optional.
 Result<void> loadSceneGrids(Scene& scene, const std::string& sceneFile, uint64_t memoryLimitBytes,

@@ -25,6 +25,7 @@
 #include <nanovdb/NanoVDB.h>
 #include <nlohmann/json.hpp>
 
+#include "mesh_import.h"
 #include "vdb_import.h"
 #include "vdb_inprocess.h"
 
@@ -181,6 +182,23 @@ json runLoad(const std::string& file, const std::string& grid, uint64_t limit, c
     return {{"ok", true}, {"grid_name", r.value().gridName}, {"warnings", r.value().warnings}};
 }
 
+// A mesh volume's fog grid (io/mesh_import.h): the mesh and OpenVDB's conversion may use the whole
+// data limit at once (no metadata declares their size).
+json runMesh(const std::string& file, const std::string& edgeFade, uint64_t limit, const fs::path& dir) {
+    VdbImportOptions options = cappedOptions(limit);
+    options.beforeRead(0);
+    float fade = 0.0f;
+    if (std::sscanf(edgeFade.c_str(), "%f", &fade) != 1) return {{"ok", false}, {"error", file + ": bad edge fade."}};
+    Result<VdbLoad> r = loadMeshDensityInProcess(file, fade, options);
+    if (!r) return {{"ok", false}, {"error", r.error().message}};
+    const DensityGrid& g = *r.value().grid;
+    const bool written = toDescriptors(dir) ? writeAll(kGridFd, g.data(), g.nanoVdbSize())
+                                            : writeFile(dir / "grid.nvdb", g.data(), g.nanoVdbSize());
+    if (!written)
+        return {{"ok", false}, {"error", file + ": cannot hand the converted grid to Brume (out of memory or disk)."}};
+    return {{"ok", true}, {"grid_name", r.value().gridName}, {"warnings", r.value().warnings}};
+}
+
 json runInfo(const std::string& file, uint64_t limit) {
     Result<std::vector<VdbGridInfo>> r = inspectVdbInProcess(file, cappedOptions(limit));
     if (!r) return {{"ok", false}, {"error", r.error().message}};
@@ -194,17 +212,19 @@ json runInfo(const std::string& file, uint64_t limit) {
 int vdbReaderMain(int argc, char** argv) {
     const std::string mode = argc > 1 ? argv[1] : "";
     const bool load = mode == "load" && argc == 6, info = mode == "info" && argc == 5;
-    if (!load && !info) {
+    const bool mesh = mode == "mesh" && argc == 6;
+    if (!load && !info && !mesh) {
         std::fprintf(stderr, "usage: %s load FILE GRID MEMORY_LIMIT_BYTES OUT_DIR | info FILE MEMORY_LIMIT_BYTES "
-                             "OUT_DIR\n(Brume's isolated OpenVDB reader; brume runs it.)\n", argv[0]);
+                             "OUT_DIR | mesh FILE EDGE_FADE_M MEMORY_LIMIT_BYTES OUT_DIR\n(Brume's isolated OpenVDB "
+                             "reader; brume runs it.)\n", argv[0]);
         return 2;
     }
     const std::string file = argv[2];
-    const uint64_t limit = std::strtoull(argv[load ? 4 : 3], nullptr, 10);
-    const fs::path dir = argv[load ? 5 : 4];
+    const uint64_t limit = std::strtoull(argv[load || mesh ? 4 : 3], nullptr, 10);
+    const fs::path dir = argv[load || mesh ? 5 : 4];
     json result;
     try {
-        result = load ? runLoad(file, argv[3], limit, dir) : runInfo(file, limit);
+        result = load ? runLoad(file, argv[3], limit, dir) : mesh ? runMesh(file, argv[3], limit, dir) : runInfo(file, limit);
     } catch (const std::exception& e) {
         result = {{"ok", false}, {"error", file + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."}};
     }
@@ -374,6 +394,29 @@ Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& 
     if (!out.ok()) return Error{path + ": cannot read it: no memory for the reader's output."};
     Result<json> r = runReader(path, {"load", path, options.grid, std::to_string(options.memoryLimitBytes),
                                       kToDescriptors}, out, options);
+    if (!r) return r.error();
+    Result<DensityGridPtr> grid = mapGrid(path, out.grid());
+    if (!grid) return grid.error();
+    grid = encodeDensityGrid(grid.value(), options.encoding, path);
+    if (!grid) return grid.error();
+    VdbLoad load;
+    load.grid = grid.value();
+    try {
+        load.gridName = r.value().at("grid_name").get<std::string>();
+        load.warnings = r.value().at("warnings").get<std::vector<std::string>>();
+    } catch (const std::exception&) {
+        return Error{crashed(path)};
+    }
+    return load;
+}
+
+Result<VdbLoad> loadMeshDensity(const std::string& path, float edgeFadeM, const VdbImportOptions& options) {
+    const MemoryFiles out;
+    if (!out.ok()) return Error{path + ": cannot read it: no memory for the reader's output."};
+    char fade[32];
+    std::snprintf(fade, sizeof fade, "%.9g", static_cast<double>(edgeFadeM));
+    Result<json> r = runReader(path, {"mesh", path, fade, std::to_string(options.memoryLimitBytes), kToDescriptors},
+                               out, options);
     if (!r) return r.error();
     Result<DensityGridPtr> grid = mapGrid(path, out.grid());
     if (!grid) return grid.error();

@@ -12,6 +12,7 @@
 #include "app/editor/files.h"
 #include "app/editor/view.h"
 #include "io/scene_json.h"
+#include "mesh_test_util.h"
 #include "vdb_test_util.h"
 
 namespace fs = std::filesystem;
@@ -238,5 +239,37 @@ TEST(EditorFiles, TheBrowserListsFoldersFirstThenFilesOfTheExtension) {
     EXPECT_EQ(vdb.value().back().name, "c.vdb");
     EXPECT_EQ(vdb.value().size(), 3u);
     EXPECT_FALSE(listDirectory((dir / "nope").string(), "").ok());
+    fs::remove_all(dir);
+}
+
+// `import mesh PATH` (the browser's Import Mesh and a dropped .obj run it): a fog hull placed like an
+// imported VDB; an edit of edge_fade_m makes the grid again; a mesh with holes is refused.
+TEST(EditorFiles, ImportMeshMakesAHullAndEditsRemakeItsGrid) {
+    const fs::path dir = tempDir("import_mesh");
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "scene.json");
+    test::writeText(dir / "meshes" / "cube.obj", test::cubeObj(0.5f));
+    test::writeText(dir / "meshes" / "open.obj", test::cubeObj(0.5f, 3));
+    const size_t n = doc.scene().volumes.size();
+    const Result<void> open = run(files, doc, "import mesh " + (dir / "meshes" / "open.obj").string());
+    ASSERT_FALSE(open.ok());
+    EXPECT_NE(open.error().message.find("not closed"), std::string::npos) << open.error().message;
+    EXPECT_EQ(doc.scene().volumes.size(), n);
+    ASSERT_TRUE(run(files, doc, "import mesh " + (dir / "meshes" / "cube.obj").string()).ok());
+    ASSERT_EQ(doc.scene().volumes.size(), n + 1);
+    const Volume v = doc.scene().volumes[n];
+    EXPECT_EQ(v.type, VolumeType::Mesh);
+    EXPECT_EQ(v.file, "meshes/cube.obj");
+    ASSERT_TRUE(v.density && !v.density->empty());
+    Result<Bounds> b = objectBounds(doc.scene(), "volume", n);
+    ASSERT_TRUE(b.ok());
+    EXPECT_LT(glm::length(b.value().center - doc.scene().camera.target), 0.05f);
+    ASSERT_TRUE(run(files, doc, "set volumes[" + std::to_string(n) + "].edge_fade_m 0.3").ok());
+    ASSERT_TRUE(doc.scene().volumes[n].density);
+    EXPECT_NE(doc.scene().volumes[n].density, v.density);  // made again for the new fade
+    ASSERT_TRUE(run(files, doc, "save").ok());
+    ASSERT_TRUE(run(files, doc, "open " + (dir / "scene.json").string()).ok());
+    EXPECT_TRUE(doc.scene().volumes[n].density && !doc.scene().volumes[n].density->empty());
+    EXPECT_TRUE(files.takeMessages().empty());
     fs::remove_all(dir);
 }

@@ -21,6 +21,7 @@
 #include "core/image.h"
 #include "io/image_io.h"
 #include "io/scene_json.h"
+#include "mesh_test_util.h"
 #include "vdb_test_util.h"
 
 namespace fs = std::filesystem;
@@ -256,6 +257,37 @@ TEST(EditorWindow, DroppedVdbIsImportedAndRenderedAndABadDropOnlyNotifies) {
     EXPECT_GT(change, 0.02);  // an unloaded (empty) vdb volume would change nothing
     const std::string recent = readText(dir / "config" / "brume" / "recent.json");
     EXPECT_NE(recent.find((dir / "scene.json").string()), std::string::npos) << recent;
+    fs::remove_all(dir);
+}
+
+// A dropped closed OBJ mesh becomes a fog hull (a mesh volume) in front of the camera and renders; a
+// mesh with a hole only notifies.
+TEST(EditorWindow, DroppedObjBecomesAHullAndAnOpenMeshOnlyNotifies) {
+    REQUIRE_XVFB();
+    const fs::path dir = tempDir("drop_obj");
+    test::writeText(dir / "hull.obj", test::cubeObj(0.75f));
+    test::writeText(dir / "open.obj", test::cubeObj(0.75f, 1));
+    std::ofstream(dir / "session.txt") << "screenshot " + (dir / "before.png").string() + "\n"
+                                          "drop " + (dir / "open.obj").string() + "\n"
+                                          "drop " + (dir / "hull.obj").string() + "\n"
+                                          "set volumes[3].medium.scattering 2 2 2\n"
+                                          "screenshot " + (dir / "after.png").string() + "\n"
+                                          "save\n"
+                                          "quit\n";
+    std::string log;
+    ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + kSmall + " --hide-ui --script " +
+                 quoted((dir / "session.txt").string()), &log), 0) << log;
+    Result<Scene> saved = loadSceneFile((dir / "scene.json").string());
+    ASSERT_TRUE(saved.ok()) << saved.error().message;
+    ASSERT_EQ(saved.value().volumes.size(), 4u);  // the three of the default scene and the hull only
+    EXPECT_EQ(saved.value().volumes[3].type, VolumeType::Mesh);
+    EXPECT_EQ(saved.value().volumes[3].file, "hull.obj");
+    Result<Image> before = readPngLinear((dir / "before.png").string());
+    Result<Image> after = readPngLinear((dir / "after.png").string());
+    ASSERT_TRUE(before.ok() && after.ok());
+    const double change = relativeMeanAbsError(after.value(), before.value());
+    std::printf("dropped OBJ hull: image changed by %.3g (relative mean abs)\n", change);
+    EXPECT_GT(change, 0.02);  // an empty hull would change nothing
     fs::remove_all(dir);
 }
 

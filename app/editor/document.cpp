@@ -129,7 +129,8 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
     for (size_t i = 0; i < n.volumes.size() && i < current.volumes.size(); ++i) {
         Volume& v = n.volumes[i];
         const Volume& was = current.volumes[i];
-        if (v.file == was.file && v.grid == was.grid && v.encoding == was.encoding && v.type == was.type) {
+        if (v.file == was.file && v.grid == was.grid && v.encoding == was.encoding && v.type == was.type &&
+            v.edge_fade_m == was.edge_fade_m) {
             v.density = was.density;
         } else if (v.type == VolumeType::Vdb && !v.file.empty()) {
             const std::filesystem::path p(v.file);
@@ -139,6 +140,10 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
             Result<VdbLoad> load = loadVdbDensity((p.is_absolute() ? p : std::filesystem::path(n.baseDir) / p).string(), options);
             if (!load) return Error{"edit: volumes[" + std::to_string(i) + "].file: " + load.error().message};
             v.density = load.value().grid;
+        } else if (v.type == VolumeType::Mesh && !v.file.empty()) {
+            std::vector<std::string> warnings;  // an empty hull shows as an empty volume
+            if (Result<void> r = loadMeshVolume(v, n, "edit", i, VdbImportOptions{}.memoryLimitBytes, warnings); !r)
+                return r.error();
         }
     }
     // Density textures likewise: kept while file and grid stay, read again when an edit changes them.

@@ -24,8 +24,12 @@ void request(Editor& e, FilesUi& f, const std::string& verb, const std::string& 
     runOrNotify(e, verb == "new" ? Action{"new", {}} : Action{"open", {path}}, now);
 }
 
+const char* extensionFor(BrowseFor b) {
+    return b == BrowseFor::ImportVdb ? ".vdb" : b == BrowseFor::ImportMesh ? ".obj" : ".json";
+}
+
 void listDir(FilesUi& f) {
-    Result<std::vector<DirEntry>> list = listDirectory(f.dir, f.browsing == BrowseFor::ImportVdb ? ".vdb" : ".json");
+    Result<std::vector<DirEntry>> list = listDirectory(f.dir, extensionFor(f.browsing));
     f.entries = list ? list.value() : std::vector<DirEntry>{};
     f.listError = list ? "" : list.error().message;
 }
@@ -57,20 +61,21 @@ void accept(Editor& e, FilesUi& f, double now) {
     f.browsing = BrowseFor::None;
     if (what == BrowseFor::Open) request(e, f, "open", path, now);
     else if (what == BrowseFor::SaveAs) runOrNotify(e, {"save", {path}}, now);
-    else runOrNotify(e, {"import", {"vdb", path}}, now);
+    else runOrNotify(e, {"import", {what == BrowseFor::ImportMesh ? "mesh" : "vdb", path}}, now);
 }
 
 void browserWindow(Editor& e, FilesUi& f, double now) {
     if (f.browsing == BrowseFor::None) return;
     const char* title = f.browsing == BrowseFor::Open ? "Open scene###browser"
-                      : f.browsing == BrowseFor::SaveAs ? "Save scene as###browser" : "Import VDB###browser";
+                      : f.browsing == BrowseFor::SaveAs ? "Save scene as###browser"
+                      : f.browsing == BrowseFor::ImportMesh ? "Import mesh###browser" : "Import VDB###browser";
     ImGui::SetNextWindowSize(ImVec2(460, 360), ImGuiCond_FirstUseEver);
     bool open = true;
     ImGui::Begin(title, &open);
     if (ImGui::Button("Up")) enter(f, fs::path(f.dir).parent_path());
     ImGui::SameLine();
     ImGui::TextUnformatted(f.dir.c_str());
-    ImGui::TextDisabled("showing folders and %s files", f.browsing == BrowseFor::ImportVdb ? ".vdb" : ".json");
+    ImGui::TextDisabled("showing folders and %s files", extensionFor(f.browsing));
     if (!f.listError.empty()) ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.4f, 1.0f), "%s", f.listError.c_str());
     ImGui::BeginChild("entries", ImVec2(0, -2.2f * ImGui::GetFrameHeightWithSpacing()), true);
     for (const DirEntry& d : f.entries) {
@@ -139,6 +144,7 @@ void fileMenuItems(Editor& e, FilesUi& f, bool& quit, double now) {
     if (ImGui::MenuItem("Save As...")) browse(e, f, BrowseFor::SaveAs);
     ImGui::Separator();
     if (ImGui::MenuItem("Import VDB...")) browse(e, f, BrowseFor::ImportVdb);
+    if (ImGui::MenuItem("Import Mesh (OBJ)...")) browse(e, f, BrowseFor::ImportMesh);
     ImGui::Separator();
     if (ImGui::MenuItem("Quit")) quit = true;
 }

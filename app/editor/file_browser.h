@@ -12,7 +12,7 @@
 
 namespace brume::editor {
 
-enum class BrowseFor { None, Open, SaveAs, ImportVdb };
+enum class BrowseFor { None, Open, SaveAs, ImportVdb, ImportMesh };
 
 struct FilesUi {
     BrowseFor browsing = BrowseFor::None;

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
+#include "io/mesh_import.h"
 #include "io/vdb_import.h"
 
 namespace brume::editor {
@@ -120,6 +121,10 @@ Result<OpenedScene> openSceneFile(const std::string& path) {
                                                 out.warnings);
             if (!t) out.warnings.push_back(t.error().message + " The texture is left out.");
         }
+        if (v.type == VolumeType::Mesh) {
+            Result<void> m = loadMeshVolume(v, out.scene, path, i, VdbImportOptions{}.memoryLimitBytes, out.warnings);
+            if (!m) out.warnings.push_back(m.error().message + " The volume stays empty.");
+        }
         if (v.type != VolumeType::Vdb) continue;
         fs::path p(v.file);
         if (p.is_relative()) p = fs::path(out.scene.baseDir) / p;
@@ -163,9 +168,36 @@ Result<Volume> importVdbVolume(const Scene& scene, const std::string& sceneDir, 
     return v;
 }
 
+Result<Volume> importMeshVolume(const Scene& scene, const std::string& sceneDir, const std::string& path) {
+    if (!exists(path)) return Error{path + ": no such file."};
+    Volume v;
+    v.type = VolumeType::Mesh;
+    v.name = fs::path(path).stem().string();
+    v.file = relativeIfInside(path, sceneDir);
+    // A scene's grids share one encoding (io/scene_json.cpp): the hull takes its vdb volumes'.
+    VdbImportOptions options;
+    for (const Volume& other : scene.volumes)
+        if (other.type == VolumeType::Vdb) options.encoding = other.encoding;
+    Result<VdbLoad> load = loadMeshDensity(absolutePath(path), v.edge_fade_m, options);
+    if (!load) return load.error();
+    v.density = load.value().grid;
+    // Placed like an imported VDB: the hull's centre at the camera's target (or 5 m ahead).
+    const Camera& c = scene.camera;
+    const glm::vec3 forward = glm::normalize(c.target - c.position);
+    const bool targetAhead = glm::dot(c.target - c.position, forward) > c.near;
+    const glm::vec3 place = targetAhead ? c.target : c.position + forward * 5.0f;
+    glm::vec3 centre(0.0f);
+    if (!v.density->empty()) {
+        const glm::vec3 mid = (v.density->indexMin() + v.density->indexMax()) * 0.5f;
+        centre = glm::vec3(v.density->gridFromIndex() * glm::vec4(mid, 1.0f));
+    }
+    v.transform.translation = place - centre;
+    return v;
+}
+
 Scene rebasedTo(Scene scene, const std::string& dir) {
     for (Volume& v : scene.volumes) {
-        if (v.type != VolumeType::Vdb || v.file.empty()) continue;
+        if ((v.type != VolumeType::Vdb && v.type != VolumeType::Mesh) || v.file.empty()) continue;
         const fs::path p(v.file);
         v.file = relativeIfInside((p.is_absolute() ? p : fs::path(scene.baseDir) / p).string(), dir);
     }
@@ -197,9 +229,11 @@ bool Files::isFileVerb(const std::string& verb) { return verb == "new" || verb =
 Result<void> Files::apply(Document& doc, const Action& a) {
     std::vector<std::string> args = a.args;
     if (a.verb == "import") {
-        if (args.size() != 2 || args[0] != "vdb") return Error{"import takes: import vdb PATH."};
+        if (args.size() != 2 || (args[0] != "vdb" && args[0] != "mesh"))
+            return Error{"import takes: import vdb PATH, or import mesh PATH."};
         const std::string dir = doc.path().empty() ? "" : fs::path(doc.path()).parent_path().string();
-        Result<Volume> v = importVdbVolume(doc.scene(), dir, args[1]);
+        Result<Volume> v = args[0] == "mesh" ? importMeshVolume(doc.scene(), dir, args[1])
+                                             : importVdbVolume(doc.scene(), dir, args[1]);
         if (!v) return v.error();
         Scene next = doc.scene();
         next.volumes.push_back(v.value());

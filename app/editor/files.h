@@ -1,6 +1,6 @@
 // The editor's files, without a window: New, Open, recent files, VDB import and the file browser's
 // directory listing. Editor::run forwards the verbs `new`, `open PATH [--discard]` and
-// `import vdb PATH` to Files::apply, so the menus, shortcuts, the browser, a dropped file and
+// `import vdb|mesh PATH` to Files::apply, so the menus, shortcuts, the browser, a dropped file and
 // --script all take the same path, and tests drive it without a window.
 #pragma once
 
@@ -56,6 +56,10 @@ Result<OpenedScene> openSceneFile(const std::string& path);
 // centre is placed at the camera's target (in front of the camera). Errors (missing file, not a
 // VDB, no float grid, corrupt) name the file.
 Result<Volume> importVdbVolume(const Scene& scene, const std::string& sceneDir, const std::string& path);
+
+// A mesh volume (a fog hull, io/mesh_import.h) for the closed OBJ mesh at `path`, its grid made, placed
+// and named like importVdbVolume's; a mesh with holes or a bad file is refused in one sentence.
+Result<Volume> importMeshVolume(const Scene& scene, const std::string& sceneDir, const std::string& path);
 
 // `scene` as saved into folder `dir` (Save As to another folder): each vdb volume's `file` names
 // the same file as before, relative to `dir` when inside it, else absolute; baseDir = dir.

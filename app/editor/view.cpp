@@ -35,7 +35,7 @@ struct PlacedBox {
 std::optional<PlacedBox> placedBox(const Volume& v) {
     const glm::mat4 world = v.transform.worldFromLocal();
     if (v.type == VolumeType::Box) return PlacedBox{world, glm::vec3(-0.5f), glm::vec3(0.5f)};
-    if (v.type == VolumeType::Vdb && v.density && !v.density->empty())
+    if ((v.type == VolumeType::Vdb || v.type == VolumeType::Mesh) && v.density && !v.density->empty())
         return PlacedBox{world * v.density->gridFromIndex(), v.density->indexMin(), v.density->indexMax()};
     return std::nullopt;  // height and depth fog fill the world; an unloaded vdb is empty
 }
@@ -206,7 +206,7 @@ std::string positionPath(const Scene& scene, const std::string& kind, size_t ind
     const std::string i = "[" + std::to_string(index) + "]";
     if (kind == "volume" && index < scene.volumes.size()) {
         const VolumeType t = scene.volumes[index].type;
-        return t == VolumeType::Box || t == VolumeType::Vdb ? "volumes" + i + ".transform.translation" : "";
+        return t == VolumeType::Box || t == VolumeType::Vdb || t == VolumeType::Mesh ? "volumes" + i + ".transform.translation" : "";
     }
     if (kind == "light" && index < scene.lights.size())
         return scene.lights[index].type == LightType::Directional ? "" : "lights" + i + ".position";
