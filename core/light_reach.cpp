@@ -58,14 +58,21 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
     const FroxelRegion grid{glm::ivec3(0), glm::ivec3(frame.froxelDims)};
     const std::vector<char> listed =
         listedInClusters(clusters, cs.lights.size(), lightPassFroxels ? *lightPassFroxels : grid);
+    // The light pass reads a light's layer only where the light reaches media: inside some volume's
+    // bounds (outside them every density is 0 and the pass skips the froxel).
+    auto reachesMedia = [&](const shd::LightData& l) {
+        for (const shd::VolumeData& v : cs.volumes)
+            if (lightMayReachBox(l, glm::vec3(v.worldMin), glm::vec3(v.worldMax))) return true;
+        return false;
+    };
     for (size_t i = 0; i < cs.lights.size(); ++i) {
         const shd::LightData& l = cs.lights[i];
         const bool surface = !culling || lightMayReachFrustum(l, frame, frame.projection.z, frame.projection.w);
         if (surface) out.surfaceLights.push_back(static_cast<int>(i));
         if (!shd::fogShadowsLight(l, frame.localFogShadows)) continue;
         // Surfaces read the volume inside the froxel grid only: from the camera to the froxel far.
-        const bool read =
-            listed[i] || (surfaces && surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
+        const bool read = (listed[i] && reachesMedia(l)) ||
+                          (surfaces && surface && lightMayReachFrustum(l, frame, 0.0f, frame.froxelRange.y));
         out.shadowVolume[i] = !culling || read ? 1 : 0;
     }
     std::stable_partition(out.surfaceLights.begin(), out.surfaceLights.end(),

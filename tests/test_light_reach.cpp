@@ -124,3 +124,15 @@ TEST(LightReach, CulledImageEqualsUnculled) {
     EXPECT_EQ(culled.volumes.source, all.volumes.source);
     EXPECT_EQ(culled.image.pixels, all.image.pixels);
 }
+
+// A light that reaches no volume's bounds touches no media: the light pass never reads its layer,
+// even where a cluster lists it (a small box, lights in view that cannot reach it, no geometry).
+TEST(LightReach, NoLayerForLightsThatReachNoMedia) {
+    Scene s = test::sceneWithTestView();
+    s.volumes = {test::boxFog({0.0f, 1.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 0.1f, 0.5f, 0.0f)};
+    s.lights = {point({0.6f, 1.0f, 0.0f}, 1.0f), point({-2.5f, 1.0f, 0.0f}, 0.3f)};
+    const CompiledScene cs = compileScene(s);
+    const shd::FrameUniforms frame = frameOf(s, cs);
+    const LightClusters clusters = buildLightClusters(cs, frame);
+    EXPECT_EQ(buildLightReach(cs, frame, clusters, true, /*surfaces=*/false).shadowVolume, (std::vector<int>{1, 0}));
+}
