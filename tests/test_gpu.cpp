@@ -203,6 +203,25 @@ TEST_F(GpuTest, OverlappingEmissiveVolumesAndEveryLightTypeMatchCpu) {
     expectMatchesCpu(s, "overlaps + all lights");
 }
 
+// Pipelines are specialized with each volume's kind for up to 10 volumes (shaders/shared/
+// specialization.h); past that the shaders read the kinds from the buffer. Both paths agree with the CPU,
+// the surfaces' exact fog shadow included.
+TEST_F(GpuTest, MoreVolumesThanTheSpecializedListMatchCpu) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Exponential)};
+    for (int i = 0; i < 10; ++i) {
+        Volume b = box();
+        b.transform.translation = {-2.0f + 0.4f * static_cast<float>(i), 0.6f, -0.5f * static_cast<float>(i % 3)};
+        b.transform.scale = glm::vec3(0.5f);
+        s.volumes.push_back(b);
+    }
+    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
+    s.geometry = ground();
+    expectMatchesCpu(s, "11 volumes (unlisted kinds) + ground");
+    s.volumes.resize(10);  // exactly the listed maximum
+    expectMatchesCpu(s, "10 volumes (listed kinds) + ground");
+}
+
 TEST_F(GpuTest, GeometryBehindFogMatchesCpu) {
     Scene s = baseScene();
     s.volumes = {height(HeightProfile::Exponential)};
