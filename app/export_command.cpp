@@ -1,12 +1,15 @@
 #include "export_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
+#include "core/settings.h"
 #include "io/atomic_file.h"
 #include "io/blender_export.h"
 #include "io/fog_source.h"
 #include "io/godot_export.h"
+#include "io/vdb_import.h"
 
 namespace brume::app {
 
@@ -41,16 +44,33 @@ CommandResult runExport(const ExportOptions& o) {
     if (!source) return badInput(source.error().message);
     std::string text;
     std::vector<std::string> losses;
+    std::map<size_t, std::string> bakedFiles;
     if (godot) {
         GodotExport g = exportGodot(source.value());
         text = std::move(g.tscn);
         losses = std::move(g.losses);
     } else {
-        BlenderExport b = exportBlender(source.value());
+        // Density textures are baked into VDB files beside the script (io/blender_export.h).
+        Scene& scene = source.value().scene;
+        std::vector<std::string> warnings;
+        const bool textured = std::any_of(scene.volumes.begin(), scene.volumes.end(),
+                                          [](const Volume& v) { return v.density_texture.has_value(); });
+        if (textured)
+            if (Result<void> g = loadSceneGrids(scene, o.input, static_cast<uint64_t>(settings::cli_vdb_memory.i()) << 20, warnings); !g)
+                return badInput(g.error().message);
+        for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        Result<std::map<size_t, std::string>> baked = bakeTexturedVolumes(scene, o.out, o.input);
+        if (!baked) return badInput(baked.error().message);
+        bakedFiles = baked.value();
+        BlenderExport b = exportBlender(source.value(), bakedFiles);
         text = std::move(b.script);
         losses = std::move(b.losses);
     }
-    if (Result<void> w = writeTextFileAtomic(o.out, text); !w) return badInput(w.error().message);
+    if (Result<void> w = writeTextFileAtomic(o.out, text); !w) {
+        std::error_code ec;
+        for (const auto& [i, file] : bakedFiles) fs::remove(file, ec);  // nothing half-written
+        return badInput(w.error().message);
+    }
     for (const std::string& loss : losses) std::printf("loss: %s\n", loss.c_str());
     return success();
 }

@@ -6,9 +6,7 @@
 #include <optional>
 
 #include "cli_text.h"
-#include "core/render.h"
 #include "core/settings.h"
-#include "io/image_io.h"
 #include "io/preset.h"
 #include "io/scene_json.h"
 #include "vdb_command.h"
@@ -79,15 +77,11 @@ std::optional<CommandResult> checkRange(const char* name, int v, const Setting& 
     return badInput(std::string(name) + " " + std::to_string(v) + " is out of range: expected " + formatRange(s) + ".");
 }
 
-// The scene as a small image: the reference renderer (no device needed, the same on every machine,
-// and sharp where a froxel grid at thumbnail size would blur small volumes).
+// The scene as a small image (io/preset.h: the reference renderer), with its grids loaded.
 Result<Image> renderThumbnail(Scene scene, const std::string& scenePath, int width, int height) {
     if (Result<void> g = loadGridsPrintingWarnings(scene, scenePath, settings::cli_vdb_memory.i()); !g) return g.error();
-    RenderRequest request = requestFromScene(scene);
-    request.width = width;
-    request.height = height;
-    Image image = renderReference(scene, request);
-    if (!allFinite(image)) return Error{"the thumbnail render of " + scenePath + " produced non-finite pixels"};
+    Result<Image> image = renderPresetThumbnail(scene, width, height);
+    if (!image) return Error{scenePath + ": " + image.error().message};
     return image;
 }
 
@@ -111,9 +105,8 @@ CommandResult runSave(const PresetOptions& o) {
         if (!t) return t.error().badInput ? badInput(t.error().message) : internalFailure(t.error().message);
         thumbnail = std::move(t.value());
     }
-    if (Result<void> w = savePresetFile(preset, o.out, o.scene); !w) return badInput(w.error().message);
-    if (thumbnail)
-        if (Result<void> w = writePng(*thumbnail, presetThumbnailPath(o.out)); !w) return badInput(w.error().message);
+    if (Result<void> w = savePresetWithThumbnail(preset, o.out, o.scene, thumbnail ? &*thumbnail : nullptr); !w)
+        return badInput(w.error().message);
     return success();
 }
 

@@ -66,7 +66,16 @@ RenderSession::RenderSession(RendererKind kind, const std::string& device) : kin
 #endif
 }
 
-RenderSession::~RenderSession() = default;
+// With BRUME_VALIDATION=1 the layer's messages would otherwise go unseen: one line names their count.
+RenderSession::~RenderSession() {
+#if BRUME_HAS_GPU
+    if (!gpu_ || !gpu_->renderer->validationEnabled()) return;
+    const std::vector<std::string> messages = gpu_->renderer->validationMessages();
+    if (!messages.empty())
+        std::fprintf(stderr, "warning: the Vulkan validation layer reported %zu messages; the first: %s\n", messages.size(),
+                     messages.front().c_str());
+#endif
+}
 
 std::variant<RenderOutput, RenderFailure> RenderSession::render(const Scene& scene, const RenderRequest& request) {
     if (startFailure_) return *startFailure_;

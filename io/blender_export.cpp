@@ -8,6 +8,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "io/fog_bake.h"
+
 namespace brume {
 namespace {
 
@@ -83,7 +85,35 @@ extern const char* const kScript;
 
 }  // namespace
 
-BlenderExport exportBlender(const FogSource& source) {
+Result<std::map<size_t, std::string>> bakeTexturedVolumes(const Scene& scene, const std::string& scriptPath,
+                                                         const std::string& sceneName) {
+    std::map<size_t, std::string> files;
+    std::error_code ec;
+    const fs::path script = fs::absolute(scriptPath, ec).lexically_normal();
+    for (size_t i = 0; i < scene.volumes.size(); ++i) {
+        const Volume& v = scene.volumes[i];
+        const glm::vec3 sigmaT = v.medium.scattering + v.medium.absorption;
+        if (!v.density_texture || !v.density_texture->density || sigmaT.x + sigmaT.y + sigmaT.z <= 0.0f) continue;
+        if (v.type != VolumeType::Box && v.type != VolumeType::Vdb) continue;
+        Scene one = scene;
+        one.volumes = {v};
+        BakeOptions options;
+        options.voxelSize = v.density_texture->tile_size_m / 64.0f;
+        Result<WorldBox> box = bakeBox(one, options, sceneName);
+        if (!box) return box.error();
+        const glm::vec3 size = box.value().max - box.value().min;
+        const double voxels = double(size.x) * double(size.y) * double(size.z) / std::pow(double(options.voxelSize), 3.0);
+        if (voxels > double(1 << 24)) options.voxelSize *= static_cast<float>(std::cbrt(voxels / double(1 << 24)));
+        const std::string path =
+            (script.parent_path() / (script.stem().string() + "_volume" + std::to_string(i) + ".vdb")).string();
+        Result<BakeResult> r = bakeFogVdb(one, options, sceneName, path);
+        if (!r) return r.error();
+        files[i] = path;
+    }
+    return files;
+}
+
+BlenderExport exportBlender(const FogSource& source, const std::map<size_t, std::string>& baked) {
     const Scene& s = source.scene;
     BlenderExport out;
     ojson data;
@@ -149,9 +179,25 @@ BlenderExport exportBlender(const FogSource& source) {
                                      " is not exported (the script rebuilds analytic and VDB volumes only).");
                 continue;
         }
-        if (v.density_texture)
+        const auto bakedFile = baked.find(i);
+        if (bakedFile != baked.end()) {
+            // The baked grid holds sigma_t (mean of the channels) with placement, edge fade and texture;
+            // over the medium's own mean sigma_t it is the factor the analytic material's density takes.
+            const glm::vec3 sigmaT = v.medium.scattering + v.medium.absorption;
+            j["kind"] = "vdb";
+            j["matrix"] = rows(kBlenderFromBrume);
+            j["file"] = bakedFile->second;
+            j["grid"] = "density";
+            j["density_scale"] = 3.0f / (sigmaT.x + sigmaT.y + sigmaT.z);
+            if (v.density_texture->scroll_mps != glm::vec3(0.0f))
+                out.losses.push_back(label("volumes", i, v.name) + ": its density_texture is baked at scene time " +
+                                     std::to_string(s.time_s) + " s into " + bakedFile->second +
+                                     "; it does not scroll in Blender.");
+        } else if (v.density_texture) {
             out.losses.push_back(label("volumes", i, v.name) + ": its density_texture (" + v.density_texture->file +
-                                 ") is not exported (the volume renders without it).");
+                                 ") is not exported (the volume renders without it): only box and vdb volumes with "
+                                 "sigma_t > 0 are baked, and only when the texture can be read.");
+        }
         if (glm::length(v.medium.emission) > 0.0f && glm::length(v.medium.scattering) > 0.0f)
             out.losses.push_back(label("volumes", i, v.name) + ": emission in a scattering medium: Cycles (volume bounces 0) "
                                  "renders 26-79% more of it than Brume's single scattering (docs/export.md).");

@@ -126,7 +126,8 @@ struct Writer {
     void volume(const Volume& v, size_t i, const Volume* firstDepth) {
         if (v.density_texture)
             losses.push_back(volumeLabel(v, i) + ": its density_texture (" + v.density_texture->file +
-                             ") is not exported: Godot needs it as a Texture3D resource.");
+                             ") is not exported (the volume renders without it; docs/export.md: Godot would need it baked into a "
+                             "Texture3D resource).");
         switch (v.type) {
             case VolumeType::Box:
                 fogVolume(v, i, kShapeBox, v.transform.scale, rotationOf(v.transform), v.transform.translation, 0.0f);

@@ -9,8 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/render.h"
 #include "core/settings.h"
 #include "io/atomic_file.h"
+#include "io/image_io.h"
 #include "io/scene_json.h"
 #include "io/scene_json_parts.h"
 
@@ -249,6 +251,28 @@ std::string presetThumbnailPath(const std::string& presetPath) {
     return fs::path(presetPath).replace_extension(".png").string();
 }
 
+Result<Image> renderPresetThumbnail(const Scene& scene, int width, int height) {
+    RenderRequest request = requestFromScene(scene);
+    request.width = width;
+    request.height = height;
+    Image image = renderReference(scene, request);
+    if (!allFinite(image)) return Error{"the thumbnail render produced non-finite pixels"};
+    return image;
+}
+
+Result<void> savePresetWithThumbnail(const Preset& preset, const std::string& path, const std::string& sourceName,
+                                     const Image* thumbnail) {
+    if (Result<void> f = checkVolumeFiles(preset.volumes, "", sourceName); !f) return f;
+    const std::string png = presetThumbnailPath(path);
+    std::error_code ec;
+    const bool hadPng = fs::exists(png, ec);
+    if (thumbnail)
+        if (Result<void> w = writePng(*thumbnail, png); !w) return w;
+    Result<void> w = savePresetFile(preset, path, sourceName);
+    if (!w && thumbnail && !hadPng) fs::remove(png, ec);
+    return w;
+}
+
 std::vector<PresetListing> listPresets(const std::string& dir) {
     std::vector<PresetListing> out;
     std::error_code ec;
@@ -258,7 +282,10 @@ std::vector<PresetListing> listPresets(const std::string& dir) {
     std::sort(files.begin(), files.end());
     for (const fs::path& f : files) {
         Result<std::string> text = scene_json::readTextFile(f.string());
-        if (!text || text.value().find(std::string("\"") + kVersionKey + "\"") == std::string::npos) continue;
+        if (text) {
+            const json j = json::parse(text.value(), nullptr, false);
+            if (!j.is_discarded() && !(j.is_object() && j.contains(kVersionKey))) continue;
+        }
         PresetListing l;
         l.path = f.string();
         Result<Preset> p = loadPresetFile(l.path);

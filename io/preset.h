@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/image.h"
 #include "core/result.h"
 #include "core/scene.h"
 
@@ -64,6 +65,17 @@ Result<Scene> applyPreset(const Scene& scene, const Preset& preset, PresetApply 
 // LOOK.json -> LOOK.png: the thumbnail beside a preset.
 std::string presetThumbnailPath(const std::string& presetPath);
 
+// The thumbnail of a look: `scene` (its camera, geometry and fog; VDB grids and density textures
+// already loaded) at width x height by the reference renderer: no device needed, the same on every
+// machine, and sharp where a froxel grid at thumbnail size would blur small volumes.
+Result<Image> renderPresetThumbnail(const Scene& scene, int width, int height);
+
+// savePresetFile with the thumbnail PNG beside it (none: no thumbnail written). Each file is
+// written atomically, the PNG first, so a listing never shows the new preset without its
+// thumbnail; if the preset cannot be written, a PNG this call created is removed again.
+Result<void> savePresetWithThumbnail(const Preset& preset, const std::string& path, const std::string& sourceName,
+                                     const Image* thumbnail);
+
 struct PresetListing {
     std::string path;
     std::optional<Preset> preset;  // empty when the file did not read
@@ -71,7 +83,9 @@ struct PresetListing {
     bool hasThumbnail = false;
 };
 
-// The presets (JSON files with a "brume_preset" key) in `dir`, sorted by file name; not recursive.
+// The presets in `dir`, sorted by file name; not recursive. Every .json file is listed (one that
+// does not read has its sentence in `error`) except valid JSON without a "brume_preset" key (a
+// scene kept beside the looks).
 std::vector<PresetListing> listPresets(const std::string& dir);
 
 // $XDG_DATA_HOME/brume/presets, or ~/.local/share/brume/presets ("" when neither is known).

@@ -172,7 +172,7 @@ bool Document::dirty() const { return !(withoutViewState(scene_) == withoutViewS
 Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), saved_(scene_), path_(std::move(path)) {}
 
 bool Document::isDocumentVerb(const std::string& verb) {
-    for (const char* v : {"add", "delete", "duplicate", "rename", "hide", "show", "set", "begin", "end", "undo", "redo", "save"})
+    for (const char* v : {"add", "delete", "duplicate", "rename", "hide", "show", "set", "begin", "end", "undo", "redo", "save", "key", "unkey"})
         if (verb == v) return true;
     return false;
 }
@@ -188,6 +188,7 @@ Result<void> Document::apply(const Action& a) {
     if (a.verb == "hide" || a.verb == "show") return hide(a.verb, a.args);
     if (a.verb == "set") return set(a.args);
     if (a.verb == "save") return save(a.args);
+    if (a.verb == "key" || a.verb == "unkey") return key(a.verb, a.args);
     if (!a.args.empty()) return usage(a.verb, "(no arguments)");
     if (a.verb == "begin") {
         if (groupDepth_++ == 0) groupSnapshotTaken_ = false;

@@ -52,6 +52,9 @@ public:
     //   set PATH VALUE...   (PATH like volumes[0].transform.translation; vec3 takes 3 numbers)
     //   begin, end          (everything in between is one undo step)
     //   undo, redo, save [PATH]   (save PATH is Save As; atomic)
+    //   key PATH SECONDS    (PATH like volumes[0].medium.scattering: a key with the setting's
+    //                       current value at that scene time; replaces a key at the same time)
+    //   unkey PATH SECONDS  (removes that key; the last key of a setting removes its track)
     Result<void> apply(const Action& action);
     static bool isDocumentVerb(const std::string& verb);
 
@@ -73,6 +76,7 @@ private:
     Result<void> hide(const std::string& verb, const std::vector<std::string>& a);
     Result<void> set(const std::vector<std::string>& a);
     Result<void> save(const std::vector<std::string>& a);
+    Result<void> key(const std::string& verb, const std::vector<std::string>& a);  // key_edit.cpp
     void commit(Scene next);
     void undo();
     void redo();

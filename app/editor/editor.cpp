@@ -9,6 +9,7 @@
 
 #include "core/debug_view.h"
 #include "core/quality.h"
+#include "preset_shelf.h"
 #include "tonemap.h"
 #include "view.h"
 
@@ -95,6 +96,7 @@ Result<void> Editor::dispatch(const Action& a) {
         return {};
     }
     if (a.verb == "time" || a.verb == "play") return timeAction(a);
+    if (a.verb == "preset") return runPresetAction(doc_, a);  // preset_shelf.h
     if (a.verb == "quit") return quitRequested = true, Result<void>();
     if (a.verb == "gizmo") {
         const std::string m = a.args.size() == 1 ? a.args[0] : "";

@@ -47,6 +47,7 @@ public:
     //   wait SECONDS, screenshot PATH, quit    (script pacing and output; see main.cpp)
     //   gizmo translate|rotate|scale (the gizmo's mode: W / E / R)
     //   time SECONDS, play on|off   (the view's scene time and its clock; scene_time.h)
+    //   preset apply FILE replace|add, preset save NAME [DESCRIPTION [TAG...]]   (preset_shelf.h)
     //   new [--discard], open PATH [--discard], import vdb PATH   (files.h; Save goes on to Document)
     //   drop PATH...   (files dropped on the window: a .vdb is imported, a .json opened, after the
     //                  unsaved-changes prompt; failures become notifications, never a script error)

@@ -1,8 +1,11 @@
 #include "scene_time.h"
 
+#include "core/animate.h"
+
 namespace brume::editor {
 
 bool sceneScrolls(const Scene& scene) {
+    if (hasKeys(scene)) return true;
     for (const Volume& v : scene.volumes)
         if (v.density_texture && v.density_texture->scroll_mps != glm::vec3(0.0f) && v.density_texture->strength != 0.0f)
             return true;

@@ -1,4 +1,5 @@
-// The live view's scene time: density textures scroll by scroll_mps x time (docs/vdb.md). View
+// The live view's scene time: density textures scroll by scroll_mps x time (docs/vdb.md) and
+// keyframed settings follow their keys (core/animate.h; the Timeline panel plays and scrubs it). View
 // state, like the camera preset: not saved in the scene, not an undo step. Interactively it follows
 // the wall clock while playing; under --script / --screenshot the clock is the frame count
 // (1/24 s per frame) and play starts off, so screenshots stay reproducible.
@@ -11,8 +12,8 @@ namespace brume::editor {
 // The fixed step of the deterministic (scripted, screenshot) clock.
 inline constexpr double kScriptedFrameSeconds = 1.0 / 24.0;
 
-// Whether any volume's density texture moves with time (otherwise advancing time changes nothing
-// and the view may rest and converge).
+// Whether anything changes with time: a volume's density texture scrolls, or a setting carries
+// keyframes (otherwise advancing time changes nothing and the view may rest and converge).
 bool sceneScrolls(const Scene& scene);
 
 class SceneTime {

@@ -302,6 +302,8 @@ void menuBar(Editor& e, UiState& ui, double now) {
         if (ImGui::BeginMenu("View")) {
             ImGui::MenuItem("Stats", nullptr, &ui.showStats);
             ImGui::MenuItem("Help", "F1", &ui.showHelp);
+            ImGui::MenuItem("Presets", nullptr, &ui.presets.show);
+            ImGui::MenuItem("Timeline", nullptr, &ui.timeline.show);
             ImGui::EndMenu();
         }
         const std::string title = (e.doc().path().empty() ? std::string("untitled") : e.doc().path()) + (e.doc().dirty() ? " *" : "");
@@ -369,6 +371,8 @@ void drawUi(Editor& e, UiState& ui, double now) {
     inspector(e, now);
     stats(e, ui, now);
     froxelGridOverlay(e);
+    drawPresetsPanel(e, ui.presets, now);
+    drawTimelinePanel(e, ui.timeline, now);
     help(ui);
     drawFiles(e, ui.files, now);
     notifications(e, now);

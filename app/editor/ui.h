@@ -6,6 +6,8 @@
 #include "editor.h"
 #include "file_browser.h"
 #include "gizmo.h"
+#include "presets_panel.h"
+#include "timeline_panel.h"
 
 namespace brume::editor {
 
@@ -18,6 +20,8 @@ struct UiState {
     bool flying = false;           // a fly key is held: its moves are one undo step   // the user chose Save or Discard
     std::string recoveryPath;      // non-empty: offer to recover this autosave
     FilesUi files;                 // File menu: browser, New/Open prompt (file_browser.h)
+    PresetsPanelState presets;     // presets_panel.h
+    TimelineState timeline;        // timeline_panel.h
 };
 
 void drawUi(Editor& editor, UiState& ui, double now);
