@@ -275,6 +275,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
     }
 
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
+    BRUME_TRY(geometry.prepare(*device, layout, variant.shapes));
     for (const PassDecl& p : kPasses) {
         if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) continue;
         PassContext ctx;

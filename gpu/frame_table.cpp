@@ -32,7 +32,7 @@ const std::array<PassDecl, 8> kPasses{{
      {B::frame, B::volumes, B::vdbGrids},
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission}},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission.
-    {"light", "light", Variant::None, Dispatch::Froxels, When::Always, Record::Dispatch,
+    {"light", "light", Variant::Shapes, Dispatch::Froxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters}},
@@ -47,7 +47,7 @@ const std::array<PassDecl, 8> kPasses{{
      {B::frame, I::sourceImage, I::mediaExtinction},
      {I::integratedScattering, I::integratedTransmittance}},
     // Fog over the surfaces, continued in closed form past the froxel far (shared/distant.h).
-    {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
+    {"composite", "composite", Variant::Shapes, Dispatch::Screen, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, I::integratedScattering, I::integratedTransmittance,
       I::sceneColor, I::sceneDepth},
      {I::outputImage}},
@@ -99,6 +99,7 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
         name += "_vdb";
         if (quantized) name += std::string("_") + toString(k.encoding);
     }
+    if ((v == Variant::ShadowVolume || v == Variant::Shapes) && k.shapes) name += "_shapes";
     return name + ".comp";
 }
 

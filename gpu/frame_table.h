@@ -153,7 +153,8 @@ enum class Dispatch : uint8_t {
 enum class Variant : uint8_t {
     None,          // the shader as named
     Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
-    ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding
+    ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
+    Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
 };
 
 // What selects a variant; one per frame.
@@ -161,6 +162,7 @@ struct VariantKey {
     bool vdb = false;       // the scene has vdb volumes
     bool textures = false;  // some volume has a density texture
     VdbEncoding encoding = VdbEncoding::Float;
+    bool shapes = false;    // some volume needs the sampled fog shadow integral (shd::needsShapeShadows)
     bool operator==(const VariantKey&) const = default;
 };
 

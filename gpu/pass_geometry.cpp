@@ -56,10 +56,11 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
     return RenderPassOwner(device.vk(), rp);
 }
 
-Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass) {
+Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass,
+                                     const char* fragment = "geometry.frag") {
     Result<ShaderModuleOwner> vert = createShaderModule(device, "geometry.vert");
     if (!vert) return vert.error();
-    Result<ShaderModuleOwner> frag = createShaderModule(device, "geometry.frag");
+    Result<ShaderModuleOwner> frag = createShaderModule(device, fragment);
     if (!frag) return frag.error();
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
@@ -133,6 +134,15 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     return pass;
 }
 
+Result<void> GeometryPass::prepare(const Device& device, VkPipelineLayout layout, bool shapes) {
+    useShapes_ = shapes;
+    if (!shapes || shapesPipeline_.get() != VK_NULL_HANDLE) return {};
+    Result<PipelineOwner> pipeline = createPipeline(device, layout, renderPass_.get(), "geometry_shapes.frag");
+    if (!pipeline) return pipeline.error();
+    shapesPipeline_ = std::move(pipeline.value());
+    return {};
+}
+
 Result<void> GeometryPass::attach(const Device& device, const FrameResources& r) {
     framebuffer_ = FramebufferOwner{};
     depthBuffer_ = GpuImage{};
@@ -183,7 +193,7 @@ void GeometryPass::record(const PassContext& ctx) const {
         const VkRect2D scissor{{0, 0}, extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, useShapes_ ? shapesPipeline_.get() : pipeline_.get());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, b.pipelineLayout.get(), 0, 1, &b.set, 0,
                                 nullptr);
         const VkDeviceSize offset = 0;

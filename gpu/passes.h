@@ -36,11 +36,16 @@ public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
+    // Picks the fragment shader's variant for this frame (with the sampled fog shadows of
+    // ellipsoids and cylinders or not: frame_table.h VariantKey::shapes), creating it on first use.
+    Result<void> prepare(const Device& device, VkPipelineLayout layout, bool shapes);
     void record(const PassContext& ctx) const;
 
 private:
     RenderPassOwner renderPass_;
     PipelineOwner pipeline_;
+    PipelineOwner shapesPipeline_;  // geometry_shapes.frag, created on first use
+    bool useShapes_ = false;
     GpuImage depthBuffer_;  // d32, depth test only
     FramebufferOwner framebuffer_;
 };

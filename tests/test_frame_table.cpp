@@ -171,6 +171,12 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, {true, true, VdbEncoding::Fp8}),
               "shadow_volume_vdb_fp8.comp");
     EXPECT_EQ(variantShaderName("light", Variant::None, {true, true, VdbEncoding::Fp8}), "light.comp");
+    // The sampled fog shadows of ellipsoids and cylinders (shaders/CMakeLists.txt BRUME_SHAPES_SHADERS).
+    EXPECT_EQ(variantShaderName("light", Variant::Shapes, {false, false, VdbEncoding::Float, true}), "light_shapes.comp");
+    EXPECT_EQ(variantShaderName("light", Variant::Shapes, {true, true, VdbEncoding::Fp8, false}), "light.comp");
+    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, {true, false, VdbEncoding::Fp16, true}),
+              "shadow_volume_vdb_fp16_shapes.comp");
+    EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {false, false, VdbEncoding::Float, true}), "voxelize.comp");
 }
 
 }  // namespace
