@@ -259,11 +259,14 @@ private:
     }
     Volume volume() {
         Volume v;
-        v.type = static_cast<VolumeType>(pick(4));
+        v.type = static_cast<VolumeType>(pick(6));
         v.medium = {vec(settings::medium_scattering), vec(settings::medium_absorption), vec(settings::medium_emission),
                     value(settings::medium_phase_g)};
-        if (v.type == VolumeType::Box || v.type == VolumeType::Vdb) v.transform = transform();
-        if (v.type == VolumeType::Box) v.edge_fade = value(settings::volume_edge_fade);
+        if (isLocalShape(v.type) || v.type == VolumeType::Vdb) v.transform = transform();
+        if (isLocalShape(v.type)) {
+            v.edge_fade = value(settings::volume_edge_fade);
+            if (coin()) v.height_falloff = value(settings::volume_height_falloff);
+        }
         if (v.type == VolumeType::Height) {
             v.profile = static_cast<HeightProfile>(pick(2));
             v.base_height = value(settings::volume_base_height);
