@@ -222,8 +222,9 @@ TEST(Shapes, ThinEllipsoidUnderAmbientMatchesTheClosedForm) {
 }
 
 // Every new type in one scene (a faded ellipsoid, a faded cylinder with height falloff, a box with
-// height falloff), lit by a shadowing sun and a point light over a dark ground: the froxel renderer
-// at `high` is within the 3% bound the box scene meets (test_froxel_renderer.cpp).
+// height falloff), thin like the box scene of test_froxel_renderer.cpp (sigma_t 0.06-0.11/m), lit by
+// a shadowing sun and a point light over a dark ground: the froxel renderer at `high` is within the
+// 3% bound that scene meets.
 Scene everyShapeScene() {
     Scene s = test::sceneWithTestView();
     Light sun = makeLight(LightType::Directional);
@@ -235,11 +236,11 @@ Scene everyShapeScene() {
     point.color = {1.0f, 0.7f, 0.4f};
     s.lights = {sun, point};
     s.volumes = {shape(VolumeType::Ellipsoid, {-2.5f, 1.5f, -2.0f}, {4.0f, 3.0f, 4.0f}, 20.0f, 0.4f, 0.0f,
-                       glm::vec3(0.15f), glm::vec3(0.01f)),
+                       glm::vec3(0.08f), glm::vec3(0.005f)),
                  shape(VolumeType::Cylinder, {2.0f, 1.5f, -3.0f}, {3.0f, 3.0f, 3.0f}, 0.0f, 0.3f, 0.6f,
-                       glm::vec3(0.2f), glm::vec3(0.02f)),
-                 shape(VolumeType::Box, {0.0f, 0.5f, -6.0f}, {10.0f, 1.0f, 4.0f}, 0.0f, 0.2f, 1.5f,
-                       glm::vec3(0.1f), glm::vec3(0.005f))};
+                       glm::vec3(0.1f), glm::vec3(0.01f)),
+                 shape(VolumeType::Box, {0.0f, 1.0f, -6.0f}, {10.0f, 2.0f, 4.0f}, 0.0f, 0.3f, 1.0f,
+                       glm::vec3(0.06f), glm::vec3(0.003f))};
     s.geometry = {test::groundPlane(glm::vec3(0.05f))};
     return s;
 }
