@@ -23,15 +23,18 @@ struct Target {
 };
 
 constexpr unsigned bit(auto type) { return 1u << static_cast<unsigned>(type); }
-constexpr unsigned kAllVolumes = 0x1Fu;
+constexpr unsigned kAllVolumes = ~0u;  // every type's bit, however many types there are
 constexpr unsigned kAllLights = 0x7u;
-constexpr unsigned kTransformed = bit(VolumeType::Box) | bit(VolumeType::Vdb) | bit(VolumeType::Mesh);
+constexpr unsigned kShapes = bit(VolumeType::Box) | bit(VolumeType::Ellipsoid) | bit(VolumeType::Cylinder);
+constexpr unsigned kTransformed = kShapes | bit(VolumeType::Vdb) | bit(VolumeType::Mesh);
 constexpr unsigned kLocal = bit(LightType::Point) | bit(LightType::Spot);
 
 // Every numeric setting of a volume, save the density texture's scroll (keying a speed would move the
-// texture by speed x time, a jump at each key) and file names.
-const std::array<Target<Volume>, 16> kVolumeTargets = {{
-    {&st::volume_edge_fade, bit(VolumeType::Box), [](Volume& v) { return &v.edge_fade; }},
+// texture by speed x time, a jump at each key), its exponent (the mean it is measured against is
+// computed once, at load) and file names.
+const std::array<Target<Volume>, 17> kVolumeTargets = {{
+    {&st::volume_edge_fade, kShapes, [](Volume& v) { return &v.edge_fade; }},
+    {&st::volume_height_falloff, kShapes, [](Volume& v) { return &v.height_falloff; }},
     {&st::volume_base_height, bit(VolumeType::Height), [](Volume& v) { return &v.base_height; }},
     {&st::volume_falloff, bit(VolumeType::Height), [](Volume& v) { return &v.falloff; }},
     {&st::volume_transition_height, bit(VolumeType::Height), [](Volume& v) { return &v.transition_height; }},

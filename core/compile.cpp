@@ -29,6 +29,26 @@ static void boundsOfUnitCube(shd::VolumeData& d, const glm::mat4& worldFromLocal
     d.worldMax = glm::vec4(hi, 0.0f);
 }
 
+// The tight world bounds of a box-kind shape: along world axis i the shape reaches
+// 0.5 x (the length of row i of the linear map) for an ellipsoid, 0.5 x (|(row i).xz| + |row_i.y|)
+// for a cylinder (local Y its axis), the unit cube's corners for a box. worldMin.y is its bottom.
+static void boundsOfShape(shd::VolumeData& d, const glm::mat4& worldFromLocal, int shape) {
+    if (shape == shd::SHAPE_BOX) return boundsOfUnitCube(d, worldFromLocal);
+    const glm::vec3 centre(worldFromLocal[3]);
+    glm::vec3 half;
+    for (int i = 0; i < 3; ++i) {
+        const glm::vec3 row(worldFromLocal[0][i], worldFromLocal[1][i], worldFromLocal[2][i]);
+        half[i] = shape == shd::SHAPE_ELLIPSOID ? 0.5f * glm::length(row)
+                                                 : 0.5f * (glm::length(glm::vec2(row.x, row.z)) + std::abs(row.y));
+    }
+    d.worldMin = glm::vec4(centre - half, 0.0f);
+    d.worldMax = glm::vec4(centre + half, 0.0f);
+}
+
+static int shapeOf(VolumeType t) {
+    return t == VolumeType::Ellipsoid ? shd::SHAPE_ELLIPSOID : t == VolumeType::Cylinder ? shd::SHAPE_CYLINDER : shd::SHAPE_BOX;
+}
+
 // index space -> grid space (the file's voxel transform) -> the volume's transform -> world.
 static void compileVdb(const Volume& v, shd::VolumeData& d) {
     d.kind.x = shd::VOLUME_VDB;
@@ -66,7 +86,7 @@ static void compileTexture(const Volume& v, shd::VolumeData& d) {
     if (!t.density || t.density->empty() || !(t.mean > 0.0f) || !(t.tile_size_m > 0.0f)) return;
     const glm::ivec3 lo = glm::ivec3(t.density->indexMin()) + 1;  // indexMin/Max are grown by one voxel
     const glm::ivec3 hi = glm::ivec3(t.density->indexMax()) - 1;
-    d.textureParams = glm::vec4(1.0f / t.tile_size_m, t.strength, 1.0f / t.mean, 0.0f);
+    d.textureParams = glm::vec4(1.0f / t.tile_size_m, t.strength, 1.0f / t.mean, std::max(t.exponent, 0.0f));
     d.textureScroll = glm::vec4(t.scroll_mps, 0.0f);
     d.textureMin = glm::ivec4(lo, 0);
     d.textureSize = glm::ivec4(hi - lo + 1, 1);
@@ -81,10 +101,15 @@ shd::VolumeData compileVolume(const Volume& v) {
     unbounded(d);
     switch (v.type) {
         case VolumeType::Box:
+        case VolumeType::Ellipsoid:
+        case VolumeType::Cylinder:
             d.kind.x = shd::VOLUME_BOX;
+            d.kind.y = shapeOf(v.type);
             d.localFromWorld = v.transform.localFromWorld();
             d.params.x = v.edge_fade;
-            boundsOfUnitCube(d, v.transform.worldFromLocal());
+            boundsOfShape(d, v.transform.worldFromLocal(), d.kind.y);
+            d.params.z = std::max(v.height_falloff, 0.0f);
+            d.params.w = d.worldMin.y;  // the lowest point, where the height factor is 1
             break;
         case VolumeType::Height:
             // The shared densities divide by transition_height and visibility_distance: scenes from
@@ -186,7 +211,7 @@ float densityTextureFactor(const CompiledScene& cs, size_t i, glm::vec3 p) {
     if (i >= cs.textures.size() || !cs.textures[i]) return 1.0f;
     const shd::VolumeData& v = cs.volumes[i];
     const shd::TextureCell c = shd::textureCell(v, p, cs.time);
-    return shd::textureDensityFactor(v, cs.textures[i]->sampleCorners(c.lo, c.hi, c.frac));
+    return shd::textureDensityFactor(v, cs.textures[i]->sampleCorners(c.lo, c.hi, c.frac, v.textureParams.w));
 }
 
 float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {

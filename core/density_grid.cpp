@@ -4,6 +4,7 @@
 
 #include <nanovdb/NanoVDB.h>
 
+#include "../shaders/shared/density_texture.h"
 #include "../shaders/shared/vdb.h"
 
 namespace brume {
@@ -116,24 +117,26 @@ float DensityGrid::sampleIndex(glm::vec3 indexPos) const {
     return sampleCorners(c.base, c.base + glm::ivec3(1), c.frac);
 }
 
-float DensityGrid::sampleCorners(glm::ivec3 a, glm::ivec3 b, glm::vec3 frac) const {
+float DensityGrid::sampleCorners(glm::ivec3 a, glm::ivec3 b, glm::vec3 frac, float exponent) const {
     if (empty_) return 0.0f;
     return visit([&](const auto& grid) {
         auto acc = grid.getAccessor();
-        auto at = [&](int x, int y, int z) { return float(acc.getValue(nanovdb::Coord(x, y, z))); };
+        auto at = [&](int x, int y, int z) {
+            return shd::textureShape(float(acc.getValue(nanovdb::Coord(x, y, z))), exponent);
+        };
         const glm::vec4 lo(at(a.x, a.y, a.z), at(b.x, a.y, a.z), at(a.x, b.y, a.z), at(b.x, b.y, a.z));
         const glm::vec4 hi(at(a.x, a.y, b.z), at(b.x, a.y, b.z), at(a.x, b.y, b.z), at(b.x, b.y, b.z));
         return shd::vdbTrilinear(lo, hi, frac);
     });
 }
 
-double DensityGrid::activeBoxMean() const {
+double DensityGrid::activeBoxMean(float exponent) const {
     if (empty_) return 0.0;
-    return visit([](const auto& grid) {
+    return visit([exponent](const auto& grid) {
         auto acc = grid.getAccessor();
         const nanovdb::CoordBBox box = grid.indexBBox();
         double sum = 0.0;
-        for (auto it = box.begin(); it; ++it) sum += static_cast<double>(acc.getValue(*it));
+        for (auto it = box.begin(); it; ++it) sum += static_cast<double>(shd::textureShape(float(acc.getValue(*it)), exponent));
         return sum / static_cast<double>(box.volume());
     });
 }

@@ -47,11 +47,13 @@ public:
     float sampleIndex(glm::vec3 indexPos) const;
 
     // Trilinear value of the cell whose 8 corners are (lo or hi).xyz per axis: lo and hi need not be
-    // neighbours (a density texture wraps hi around to the start of its box at the seam).
-    float sampleCorners(glm::ivec3 lo, glm::ivec3 hi, glm::vec3 frac) const;
-    // Mean value over the active voxels' index box (inactive voxels count as the background, 0);
-    // 0 when empty. Costs one lookup per voxel of the box: for density textures, at load.
-    double activeBoxMean() const;
+    // neighbours (a density texture wraps hi around to the start of its box at the seam). Each
+    // corner's value v is taken as textureShape(v, exponent) (shared/density_texture.h).
+    float sampleCorners(glm::ivec3 lo, glm::ivec3 hi, glm::vec3 frac, float exponent = 1.0f) const;
+    // Mean of textureShape(value, exponent) over the active voxels' index box (inactive voxels count
+    // as the background, 0); 0 when empty. Costs one lookup per voxel of the box: for density
+    // textures, at load.
+    double activeBoxMean(float exponent = 1.0f) const;
 
     bool empty() const { return empty_; }
     VdbEncoding encoding() const { return encoding_; }

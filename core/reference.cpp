@@ -31,11 +31,27 @@ glm::dvec3 transformDir(const glm::mat4& m, glm::dvec3 d) { return glm::dvec3(gl
 
 Interval intersect(Interval a, double lo, double hi) { return Interval{std::max(a.t0, lo), std::min(a.t1, hi)}; }
 
-// Box volumes: the unit cube in local space, and the inner cube where a faded box has density 1.
-// Affine maps keep the ray parameter, so local intervals are world intervals.
+// Box-kind volumes: the unit cube, ball or cylinder in local space, and the inner shape where a
+// faded one has density 1. Affine maps keep the ray parameter, so local intervals are world intervals.
+Interval ballIntervalD(glm::dvec3 o, glm::dvec3 d, double r) {
+    const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - r * r;
+    const double disc = b * b - a * c;
+    if (!(a > 0.0) || !(disc >= 0.0)) return Interval{};
+    const double root = std::sqrt(disc);
+    return Interval{(-b - root) / a, (-b + root) / a};
+}
+
 Interval boxInterval(const shd::VolumeData& v, glm::dvec3 o, glm::dvec3 d, double half) {
-    return rayBoxInterval(transformPoint(v.localFromWorld, o), transformDir(v.localFromWorld, d), glm::dvec3(-half),
-                          glm::dvec3(half));
+    const glm::dvec3 lo = transformPoint(v.localFromWorld, o), ld = transformDir(v.localFromWorld, d);
+    if (shd::boxShape(v) == shd::SHAPE_ELLIPSOID) return ballIntervalD(lo, ld, half);
+    if (shd::boxShape(v) == shd::SHAPE_CYLINDER) {
+        const Interval slab = rayBoxInterval(lo, ld, glm::dvec3(-kInf, -half, -kInf), glm::dvec3(kInf, half, kInf));
+        const bool axial = ld.x == 0.0 && ld.z == 0.0;
+        const Interval disc = axial ? (lo.x * lo.x + lo.z * lo.z <= half * half ? Interval{-kInf, kInf} : Interval{})
+                                    : ballIntervalD(glm::dvec3(lo.x, 0.0, lo.z), glm::dvec3(ld.x, 0.0, ld.z), half);
+        return Interval{std::max(slab.t0, disc.t0), std::min(slab.t1, disc.t1)};
+    }
+    return rayBoxInterval(lo, ld, glm::dvec3(-half), glm::dvec3(half));
 }
 
 double innerHalf(const shd::VolumeData& v) { return 0.5 * (1.0 - static_cast<double>(v.params.x)); }
@@ -68,9 +84,20 @@ double smoothstepIntegral(double e0, double e1, double u) {
 // Box density is 1 - smoothstep(1 - fade, 1, u) with u = 2 max|q_a| in local coordinates. Along a
 // line each q_a is linear, so u is linear between the parameters where two |q_a| cross: split there
 // and integrate the smoothstep exactly, in closed form.
+// Ellipsoids, cylinders and height-falling boxes: the midpoint rule on the chord's pieces outside,
+// inside and again outside the inner shape (on each the density is smooth), 64 steps a piece.
+double shapeDensityIntegral(const shd::VolumeData& v, glm::dvec3 o, glm::dvec3 d, Interval chord) {
+    Interval inner = intersect(boxInterval(v, o, d, innerHalf(v)), chord.t0, chord.t1);
+    if (!(inner.t1 > inner.t0)) inner = Interval{chord.t0, chord.t0};
+    auto density = [&](glm::vec3 p) { return static_cast<double>(shd::boxDensity(v, p)); };
+    return marchDensity(density, o, d, chord.t0, inner.t0, 64) + marchDensity(density, o, d, inner.t0, inner.t1, 64) +
+           marchDensity(density, o, d, inner.t1, chord.t1, 64);
+}
+
 double boxDensityIntegral(const shd::VolumeData& v, glm::dvec3 o, glm::dvec3 d, double length) {
     const Interval chord = intersect(boxInterval(v, o, d, 0.5), 0.0, length);
     if (chord.empty()) return 0.0;
+    if (shd::boxShape(v) != shd::SHAPE_BOX || v.params.z > 0.0f) return shapeDensityIntegral(v, o, d, chord);
     if (!hasFade(v)) return chord.t1 - chord.t0;
     const glm::dvec3 lo = transformPoint(v.localFromWorld, o), ld = transformDir(v.localFromWorld, d);
     double cuts[8];
@@ -451,11 +478,14 @@ private:
         }
         // Trilinear density changes over a voxel: a voxel edge is its scale (density_step of it per step).
         if (v.kind.x == shd::VOLUME_VDB) return static_cast<double>(v.params.y);
-        if (v.kind.x == shd::VOLUME_BOX && hasFade(v)) {
+        if (v.kind.x == shd::VOLUME_BOX) {
+            // height_falloff: a factor e over 1 / (falloff |dir.y|).
+            const double height = v.params.z > 0.0f ? 1.0 / (static_cast<double>(v.params.z) * std::max(std::abs(ray.dir.y), 1e-30))
+                                                    : kInf;
             const glm::vec3 q = glm::vec3(v.localFromWorld * glm::vec4(p, 1.0f));
-            if (2.0f * std::max(std::abs(q.x), std::max(std::abs(q.y), std::abs(q.z))) < 1.0f - v.params.x) return kInf;
+            if (!hasFade(v) || shd::shapeDistance(shd::boxShape(v), 2.0f * q) < 1.0f - v.params.x) return height;
             const double speed = glm::length(transformDir(v.localFromWorld, ray.dir));
-            return 0.5 * static_cast<double>(v.params.x) / std::max(speed, 1e-30);
+            return std::min(height, 0.5 * static_cast<double>(v.params.x) / std::max(speed, 1e-30));
         }
         return kInf;
     }

@@ -48,6 +48,8 @@ const char* toString(LightType t) {
 const char* toString(VolumeType t) {
     switch (t) {
         case VolumeType::Box: return "box";
+        case VolumeType::Ellipsoid: return "ellipsoid";
+        case VolumeType::Cylinder: return "cylinder";
         case VolumeType::Height: return "height";
         case VolumeType::Depth: return "depth";
         case VolumeType::Vdb: return "vdb";

@@ -110,22 +110,29 @@ struct DensityTexture {
     float tile_size_m = settings::texture_tile_size.f();
     glm::vec3 scroll_mps = vec3Default(settings::texture_scroll);
     float strength = settings::texture_strength.f();
+    float exponent = settings::texture_exponent.f();  // contrast: each voxel's value^exponent
     // Loaded by io/vdb_import.h (loadSceneGrids), not serialized: the grid and its mean over the
-    // active box (DensityGrid::activeBoxMean). Null until loaded: an unloaded texture modulates nothing.
+    // active box (DensityGrid::activeBoxMean) of value^exponent. Null until loaded: an unloaded texture modulates nothing.
     DensityGridPtr density;
     float mean = 0.0f;
     bool operator==(const DensityTexture&) const = default;
 };
 
-enum class VolumeType { Box, Height, Depth, Vdb, Mesh };
+enum class VolumeType { Box, Height, Depth, Vdb, Mesh, Ellipsoid, Cylinder };
+
+// Box, ellipsoid and cylinder: the shapes in a transformed unit cube (compiled to one GPU kind).
+constexpr bool isLocalShape(VolumeType t) {
+    return t == VolumeType::Box || t == VolumeType::Ellipsoid || t == VolumeType::Cylinder;
+}
 enum class HeightProfile { Exponential, Linear };
 
 // One struct for every volume type; only the fields of its type are read and written.
 struct Volume {
     VolumeType type = VolumeType::Box;
     std::string name;
-    Transform transform;                                       // box, vdb, mesh
-    float edge_fade = settings::volume_edge_fade.f();          // box
+    Transform transform;                                       // box, ellipsoid, cylinder, vdb, mesh
+    float edge_fade = settings::volume_edge_fade.f();          // box, ellipsoid, cylinder
+    float height_falloff = settings::volume_height_falloff.f();  // box, ellipsoid, cylinder
     float base_height = settings::volume_base_height.f();      // height
     HeightProfile profile = HeightProfile::Exponential;        // height
     float falloff = settings::volume_falloff.f();              // height, exponential

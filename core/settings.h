@@ -70,9 +70,10 @@ inline constexpr Setting light_fog_scale  {"lights[].fog_scale", K::Number, "", 
 inline constexpr Setting light_inner_deg  {"lights[type=spot].inner_deg", K::Number, "deg", 0, 179, {20}, "", "Half-angle of full intensity; must not exceed outer_deg."};
 inline constexpr Setting light_outer_deg  {"lights[type=spot].outer_deg", K::Number, "deg", 0, 179, {30}, "", "Half-angle where the cone reaches zero (smoothstep on the cosine in between)."};
 
-inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb|mesh", "Kind of fog volume; required."};
+inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb|mesh|ellipsoid|cylinder", "Kind of fog volume; required."};
 inline constexpr Setting volume_name      {"volumes[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
-inline constexpr Setting volume_edge_fade {"volumes[type=box].edge_fade", K::Number, "", 0, 1, {0.1}, "", "Fraction of the half-size over which density fades to 0 at the faces; 0 = hard edge."};
+inline constexpr Setting volume_edge_fade {"volumes[type=box|ellipsoid|cylinder].edge_fade", K::Number, "", 0, 1, {0.1}, "", "Fraction of the half-size over which density fades to 0 at the faces (ellipsoid, cylinder: the surface); 0 = hard edge."};
+inline constexpr Setting volume_height_falloff {"volumes[type=box|ellipsoid|cylinder].height_falloff", K::Number, "1/m", 0, 1000, {0}, "", "Density x exp(-height_falloff * (y - bottom)), bottom = the volume's lowest world point; 0 = uniform."};
 inline constexpr Setting volume_base_height {"volumes[type=height].base_height", K::Number, "m", -kBig, kBig, {0}, "", "Height below which density is 1."};
 inline constexpr Setting volume_profile   {"volumes[type=height].profile", K::Choice, "", 0, 0, {0}, "exponential|linear", "Density profile above base_height."};
 inline constexpr Setting volume_falloff   {"volumes[type=height].falloff", K::Number, "1/m", 0, 1000, {0.5}, "", "Exponential profile: density exp(-falloff * (y - base_height))."};
@@ -91,9 +92,10 @@ inline constexpr Setting texture_grid     {"volumes[].density_texture.grid", K::
 inline constexpr Setting texture_tile_size {"volumes[].density_texture.tile_size_m", K::Number, "m", 1e-3, kBig, {10}, "", "Edge of the cube in world space that one copy of the grid's active box fills; the grid repeats every tile_size_m along X, Y and Z."};
 inline constexpr Setting texture_scroll   {"volumes[].density_texture.scroll_mps", K::Vec3, "m/s", -kBig, kBig, {0, 0, 0}, "", "Wind: the texture moves by scroll_mps x time (brume render --time, --fps)."};
 inline constexpr Setting texture_strength {"volumes[].density_texture.strength", K::Number, "", 0, 100, {1}, "", "density x max(0, 1 + strength (texture / mean - 1)), mean = the grid's mean over its active box: 0 = the plain volume, 1 = density x texture / mean (same mean density), > 1 = more contrast."};
+inline constexpr Setting texture_exponent {"volumes[].density_texture.exponent", K::Number, "", 0, 100, {1}, "", "Contrast: each voxel's value is raised to this power before the strength rule (and the mean is that of value^exponent, so strength 0 is still the plain volume); 1 = the grid as it is, > 1 sharper wisps."};
 inline constexpr Setting transform_translation {"*.transform.translation", K::Vec3, "m", -kBig, kBig, {0, 0, 0}, "", "Translation."};
 inline constexpr Setting transform_rotation {"*.transform.rotation_deg", K::Vec3, "deg", -36000, 36000, {0, 0, 0}, "", "Rotation about world X, then Y, then Z."};
-inline constexpr Setting transform_scale  {"*.transform.scale", K::Vec3, "", 1e-4, kBig, {1, 1, 1}, "", "Scale along the local axes (box volumes and geometry: the unit cube's edge lengths)."};
+inline constexpr Setting transform_scale  {"*.transform.scale", K::Vec3, "", 1e-4, kBig, {1, 1, 1}, "", "Scale along the local axes (box volumes and geometry: the unit cube's edge lengths; ellipsoid: its diameters; cylinder: diameters along X and Z, height along Y)."};
 
 inline constexpr Setting medium_scattering {"volumes[].medium.scattering", K::Vec3, "1/m", 0, kCoef, {0.1, 0.1, 0.1}, "", "Scattering coefficient sigma_s at density 1."};
 inline constexpr Setting medium_absorption {"volumes[].medium.absorption", K::Vec3, "1/m", 0, kCoef, {0.01, 0.01, 0.01}, "", "Absorption coefficient sigma_a at density 1."};
@@ -121,10 +123,10 @@ inline constexpr std::array kAll = {
     &light_type, &light_name, &light_direction, &light_position, &light_color,
     &light_intensity_directional, &light_intensity_local, &light_range, &light_shadows_directional,
     &light_shadows_local, &light_fog_scale, &light_inner_deg, &light_outer_deg,
-    &volume_type, &volume_name, &volume_edge_fade, &volume_base_height, &volume_profile, &volume_falloff,
+    &volume_type, &volume_name, &volume_edge_fade, &volume_height_falloff, &volume_base_height, &volume_profile, &volume_falloff,
     &volume_transition_height, &volume_visibility_distance, &volume_start_distance, &volume_file,
     &volume_grid, &volume_encoding, &volume_density_scale, &volume_mesh_file, &volume_edge_fade_m, &texture_file, &texture_grid, &texture_tile_size, &texture_scroll,
-    &texture_strength, &transform_translation, &transform_rotation, &transform_scale,
+    &texture_strength, &texture_exponent, &transform_translation, &transform_rotation, &transform_scale,
     &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
     &keys_interpolation, &keys_time, &keys_value,
     &geometry_type, &geometry_name, &geometry_height, &geometry_center, &geometry_radius, &geometry_albedo,

@@ -358,7 +358,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
             case Record::Dispatch: dispatchPass(ctx); break;
             case Record::ClearMedia: recordClearMedia(ctx); break;
             case Record::Geometry:
-                BRUME_TRY(geometry.usePipeline(*device, layout, spec));
+                BRUME_TRY(geometry.usePipeline(*device, layout, spec, variant.shapes));
                 geometry.record(ctx);
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;

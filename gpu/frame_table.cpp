@@ -55,7 +55,7 @@ const std::array<PassDecl, 10> kPasses{{
      {I::integratedScattering, I::integratedTransmittance}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h); the composite interpolates it.
-    {"distant fog", "distant_fog", Variant::None, Dispatch::TileCorners, When::Always, Record::Dispatch,
+    {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.
@@ -113,6 +113,7 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
         if (!k.sunShadowMap) name += "_nosun";
         if (!k.localShadowMaps) name += "_nolocal";
     }
+    if ((v == Variant::ShadowVolume || v == Variant::Light || v == Variant::Shapes) && k.shapes) name += "_shapes";
     return name + ".comp";
 }
 

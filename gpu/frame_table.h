@@ -156,8 +156,9 @@ enum class Dispatch : uint8_t {
 enum class Variant : uint8_t {
     None,          // the shader as named
     Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
-    ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding
-    Light,         // _novdb, _nosun, _nolocal for the lookups the frame lacks (VariantKey)
+    ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
+    Light,         // _novdb, _nosun, _nolocal for the lookups the frame lacks (VariantKey); then _shapes
+    Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
 };
 
 // What selects a variant; one per frame.
@@ -169,6 +170,7 @@ struct VariantKey {
     bool vdbShadows = true;       // FrameUniforms.vdbShadowSamples > 0
     bool sunShadowMap = true;     // FrameUniforms.sunShadowLight > 0
     bool localShadowMaps = true;  // some light has a point/spot shadow map (localShadowMapped)
+    bool shapes = false;    // some volume needs the sampled fog shadow integral (shd::needsShapeShadows)
     bool operator==(const VariantKey&) const = default;
 };
 

@@ -57,10 +57,10 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
 }
 
 Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass,
-                                     const SpecKey& key) {
+                                     const SpecKey& key, const char* fragment) {
     Result<ShaderModuleOwner> vert = createShaderModule(device, "geometry.vert");
     if (!vert) return vert.error();
-    Result<ShaderModuleOwner> frag = createShaderModule(device, "geometry.frag");
+    Result<ShaderModuleOwner> frag = createShaderModule(device, fragment);
     if (!frag) return frag.error();
     const Specialization spec(key);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
@@ -129,16 +129,18 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     Result<RenderPassOwner> rp = createRenderPass(device);
     if (!rp) return rp.error();
     pass.renderPass_ = std::move(rp.value());
-    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}));
+    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}, false));
     return pass;
 }
 
-Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key) {
-    auto it = pipelines_.find(key);
+Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key,
+                                       bool shapes) {
+    auto it = pipelines_.find({key, shapes});
     if (it == pipelines_.end()) {
-        Result<PipelineOwner> pipeline = createPipeline(device, layout, renderPass_.get(), key);
+        Result<PipelineOwner> pipeline =
+            createPipeline(device, layout, renderPass_.get(), key, shapes ? "geometry_shapes.frag" : "geometry.frag");
         if (!pipeline) return pipeline.error();
-        it = pipelines_.emplace(key, std::move(pipeline.value())).first;
+        it = pipelines_.emplace(std::pair{key, shapes}, std::move(pipeline.value())).first;
     }
     pipeline_ = it->second.get();
     return {};

@@ -40,16 +40,18 @@ void recordClearMedia(const PassContext& ctx);
 class GeometryPass {
 public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
-    // Selects (creating on first use) the pipeline specialized for key (pipeline.h SpecKey).
-    Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key);
+    // Selects (creating on first use) the pipeline specialized for key (pipeline.h SpecKey), with the
+    // fragment shader's variant with the sampled fog shadows of ellipsoids and cylinders or not
+    // (frame_table.h VariantKey::shapes).
+    Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes);
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
     void record(const PassContext& ctx) const;
 
 private:
     RenderPassOwner renderPass_;
-    std::map<SpecKey, PipelineOwner> pipelines_;  // by specialization key
-    VkPipeline pipeline_ = VK_NULL_HANDLE;         // the one usePipeline chose
+    std::map<std::pair<SpecKey, bool>, PipelineOwner> pipelines_;  // by specialization key and shapes variant
+    VkPipeline pipeline_ = VK_NULL_HANDLE;                          // the one usePipeline chose
     GpuImage depthBuffer_;  // d32, depth test only
     FramebufferOwner framebuffer_;
 };

@@ -63,6 +63,7 @@ Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& d
 Result<void> GpuRenderer::State::chooseVariant(const CompiledScene& cs) {
     variant = VariantKey{};
     for (const DensityGridPtr& g : cs.textures) variant.textures = variant.textures || g != nullptr;
+    for (const shd::VolumeData& v : cs.volumes) variant.shapes = variant.shapes || shd::needsShapeShadows(v);
     for (const DensityGridPtr& g : cs.grids) {
         if (!g) continue;
         if (variant.vdb && g->encoding() != variant.encoding)

@@ -6,6 +6,8 @@
 #include <numbers>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "core/compile.h"
 #include <nlohmann/json.hpp>
 
 #include "io/fog_bake.h"
@@ -143,9 +145,14 @@ BlenderExport exportBlender(const FogSource& source, const std::map<size_t, std:
         j["name"] = v.name.empty() ? "Volume" + std::to_string(i) : v.name;
         switch (v.type) {
             case VolumeType::Box:
+            case VolumeType::Ellipsoid:
+            case VolumeType::Cylinder:
                 j["kind"] = "box";
+                j["shape"] = toString(v.type);
                 j["matrix"] = rows(kBlenderFromBrume * v.transform.worldFromLocal());
                 j["edge_fade"] = v.edge_fade;
+                j["height_falloff"] = v.height_falloff;
+                j["bottom"] = compileVolume(v).worldMin.y;  // Brume's lowest world y: Blender's world z
                 break;
             case VolumeType::Height:
                 j["kind"] = v.profile == HeightProfile::Exponential ? "height_exponential" : "height_linear";
@@ -329,25 +336,47 @@ def separate(nt, vector_socket):
     return n.outputs
 
 
+def shape_field(nt, v):
+    """A box, ellipsoid or cylinder's edge profile in its object space (the unit cube): None where
+    it is 1 everywhere inside the cube."""
+    tc = nt.nodes.new("ShaderNodeTexCoord")
+    x, y, z = separate(nt, tc.outputs["Object"])[:3]
+    if v["shape"] == "ellipsoid":
+        n = nt.nodes.new("ShaderNodeVectorMath")
+        n.operation = "LENGTH"
+        link(nt, tc.outputs["Object"], n.inputs[0])
+        d = math_node(nt, "MULTIPLY", n.outputs["Value"], 2.0)
+    elif v["shape"] == "cylinder":
+        r = math_node(nt, "SQRT", math_node(nt, "ADD", math_node(nt, "MULTIPLY", x, x), math_node(nt, "MULTIPLY", z, z)))
+        d = math_node(nt, "MULTIPLY", math_node(nt, "MAXIMUM", r, math_node(nt, "ABSOLUTE", y)), 2.0)
+    else:
+        d = math_node(nt, "MAXIMUM", math_node(nt, "ABSOLUTE", x), math_node(nt, "ABSOLUTE", y))
+        d = math_node(nt, "MULTIPLY", math_node(nt, "MAXIMUM", d, math_node(nt, "ABSOLUTE", z)), 2.0)
+    if v["edge_fade"] <= 0.0:
+        # The cube mesh bounds a box; an ellipsoid or cylinder ends at d = 1 inside it.
+        return None if v["shape"] == "box" else math_node(nt, "LESS_THAN", d, 1.0)
+    mr = nt.nodes.new("ShaderNodeMapRange")
+    mr.interpolation_type = "SMOOTHSTEP"
+    mr.clamp = True
+    link(nt, d, mr.inputs["Value"])
+    mr.inputs["From Min"].default_value = 1.0 - v["edge_fade"]
+    mr.inputs["From Max"].default_value = 1.0
+    mr.inputs["To Min"].default_value = 1.0
+    mr.inputs["To Max"].default_value = 0.0
+    return mr.outputs["Result"]
+
+
 def field(nt, v):
     """The density field of a volume (Brume's shaders/shared/media.h), as shader nodes."""
     kind = v["kind"]
     if kind == "box":
-        tc = nt.nodes.new("ShaderNodeTexCoord")
-        x, y, z = separate(nt, tc.outputs["Object"])[:3]
-        d = math_node(nt, "MAXIMUM", math_node(nt, "ABSOLUTE", x), math_node(nt, "ABSOLUTE", y))
-        d = math_node(nt, "MULTIPLY", math_node(nt, "MAXIMUM", d, math_node(nt, "ABSOLUTE", z)), 2.0)
-        if v["edge_fade"] <= 0.0:
-            return None
-        mr = nt.nodes.new("ShaderNodeMapRange")
-        mr.interpolation_type = "SMOOTHSTEP"
-        mr.clamp = True
-        link(nt, d, mr.inputs["Value"])
-        mr.inputs["From Min"].default_value = 1.0 - v["edge_fade"]
-        mr.inputs["From Max"].default_value = 1.0
-        mr.inputs["To Min"].default_value = 1.0
-        mr.inputs["To Max"].default_value = 0.0
-        return mr.outputs["Result"]
+        f = shape_field(nt, v)
+        if v["height_falloff"] <= 0.0:
+            return f
+        geo = nt.nodes.new("ShaderNodeNewGeometry")
+        above = math_node(nt, "SUBTRACT", separate(nt, geo.outputs["Position"])[2], v["bottom"])
+        h = math_node(nt, "EXPONENT", math_node(nt, "MULTIPLY", above, -v["height_falloff"]))
+        return h if f is None else math_node(nt, "MULTIPLY", f, h)
     if kind == "vdb":
         a = nt.nodes.new("ShaderNodeAttribute")
         a.attribute_type = "GEOMETRY"

@@ -7,6 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/compile.h"
+
 namespace brume {
 namespace {
 
@@ -15,6 +17,8 @@ constexpr float kGodotMaxAnisotropy = 0.9f;
 // Godot's light ranges stop here (OmniLight3D.omni_range, SpotLight3D.spot_range).
 constexpr float kGodotMaxRange = 4096.0f;
 // RenderingServer.FogVolumeShape.
+constexpr int kShapeEllipsoid = 0;  // Godot's FogVolume shapes: RenderingServer::FogVolumeShape
+constexpr int kShapeCylinder = 2;
 constexpr int kShapeBox = 3;
 constexpr int kShapeWorld = 4;
 
@@ -94,7 +98,7 @@ struct Writer {
                toString(v.type) + ")";
     }
 
-    std::string fogMaterial(const Volume& v, size_t i, float heightFalloff) {
+    std::string fogMaterial(const Volume& v, size_t i, float heightFalloff, float densityScale = 1.0f) {
         const MappedMedium m = mapMedium(v.medium);
         const glm::vec3 sigmaT = v.medium.scattering + v.medium.absorption;
         if (std::max({sigmaT.x, sigmaT.y, sigmaT.z}) > 1.01f * std::min({sigmaT.x, sigmaT.y, sigmaT.z}))
@@ -104,17 +108,17 @@ struct Writer {
                              "transmittance is lost.");
         const std::string id = "FogMaterial_" + std::to_string(nextId++);
         resources += "[sub_resource type=\"FogMaterial\" id=\"" + id + "\"]\n";
-        resources += "density = " + num(m.density) + "\n";
+        resources += "density = " + num(m.density * densityScale) + "\n";
         resources += "albedo = " + color(m.albedo) + "\n";
         resources += "emission = " + color(v.medium.emission) + "\n";
         resources += "height_falloff = " + num(heightFalloff) + "\n";
-        resources += "edge_fade = " + num(v.type == VolumeType::Box ? v.edge_fade : 0.0f) + "\n\n";
+        resources += "edge_fade = " + num(isLocalShape(v.type) ? v.edge_fade : 0.0f) + "\n\n";
         return id;
     }
 
     void fogVolume(const Volume& v, size_t i, int shape, glm::vec3 size, const glm::mat3& basis, glm::vec3 origin,
-                   float heightFalloff) {
-        const std::string material = fogMaterial(v, i, heightFalloff);
+                   float heightFalloff, float densityScale = 1.0f) {
+        const std::string material = fogMaterial(v, i, heightFalloff, densityScale);
         nodes += "[node name=" + quote(nodeName(v.name, "Volume" + std::to_string(i))) +
                  " type=\"FogVolume\" parent=\".\"]\n";
         nodes += "transform = " + transform3d(basis, origin) + "\n";
@@ -130,11 +134,23 @@ struct Writer {
                              "Texture3D resource).");
         switch (v.type) {
             case VolumeType::Box:
-                fogVolume(v, i, kShapeBox, v.transform.scale, rotationOf(v.transform), v.transform.translation, 0.0f);
+            case VolumeType::Ellipsoid:
+            case VolumeType::Cylinder: {
+                const int shape = v.type == VolumeType::Box ? kShapeBox : v.type == VolumeType::Ellipsoid ? kShapeEllipsoid : kShapeCylinder;
+                // height_falloff: Brume's exp(-k (y - bottom)) is Godot's min(1, 2^(-k/ln2 (y - centre)))
+                // times exp(-k (centre - bottom)): the same above the centre, held at the centre's value below.
+                const float k = v.height_falloff;
+                const float below = v.transform.translation.y - compileVolume(v).worldMin.y;
+                fogVolume(v, i, shape, v.transform.scale, rotationOf(v.transform), v.transform.translation,
+                          k / std::numbers::ln2_v<float>, std::exp(-k * below));
+                if (k > 0.0f)
+                    losses.push_back(volumeLabel(v, i) + ": height_falloff " + num(k) + " 1/m: Godot's FogMaterial "
+                                     "holds the density below the volume's centre at the centre's value (approximate).");
                 if (v.edge_fade > 0.0f)
                     losses.push_back(volumeLabel(v, i) + ": edge_fade " + num(v.edge_fade) +
                                      " is written as Godot's edge_fade, whose fade curve differs (approximate).");
                 break;
+            }
             case VolumeType::Height: {
                 // Godot: density * min(1, 2^(-height_falloff (y - origin.y))); Brume: min(1, e^(-k (y - base))).
                 float k = v.falloff;

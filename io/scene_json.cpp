@@ -547,6 +547,7 @@ void readDensityTexture(Ctx& c, Obj& parent, Volume& vol) {
         readFloat(c, o, st::texture_tile_size, tex.tile_size_m);
         readVec3(c, o, st::texture_scroll, tex.scroll_mps);
         readFloat(c, o, st::texture_strength, tex.strength);
+        readFloat(c, o, st::texture_exponent, tex.exponent);
         if (!c.failed()) vol.density_texture = tex;
     });
 }
@@ -560,7 +561,7 @@ std::vector<std::string> keyableOn(const Volume& v) {
 
 std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path) {
     Obj o(c, v, path, "a volume");
-    const std::optional<VolumeType> type = readType<VolumeType, 5>(c, o, st::volume_type);
+    const std::optional<VolumeType> type = readType<VolumeType, 7>(c, o, st::volume_type);
     if (!type) return std::nullopt;
     o.setWhere(std::string("a ") + toString(*type) + " volume");
     Volume vol;
@@ -568,8 +569,11 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
     readString(c, o, st::volume_name, vol.name);
     switch (*type) {
         case VolumeType::Box:
+        case VolumeType::Ellipsoid:
+        case VolumeType::Cylinder:
             readTransform(c, o, vol.transform);
             readFloat(c, o, st::volume_edge_fade, vol.edge_fade);
+            readFloat(c, o, st::volume_height_falloff, vol.height_falloff);
             break;
         case VolumeType::Height:
             readFloat(c, o, st::volume_base_height, vol.base_height);
@@ -871,8 +875,12 @@ ojson volumeJson(const Volume& v) {
     j["name"] = v.name;
     switch (v.type) {
         case VolumeType::Box:
+        case VolumeType::Ellipsoid:
+        case VolumeType::Cylinder:
             j["transform"] = transformJson(v.transform);
             j["edge_fade"] = num(v.edge_fade);
+            // Written when set, so scenes without it are saved as before this key existed.
+            if (v.height_falloff != 0.0f) j["height_falloff"] = num(v.height_falloff);
             break;
         case VolumeType::Height:
             j["base_height"] = num(v.base_height);
@@ -905,6 +913,7 @@ ojson volumeJson(const Volume& v) {
         tj["tile_size_m"] = num(t.tile_size_m);
         tj["scroll_mps"] = vec(t.scroll_mps);
         tj["strength"] = num(t.strength);
+        if (t.exponent != 1.0f) tj["exponent"] = num(t.exponent);
         j["density_texture"] = tj;
     }
     j["medium"] = mediumJson(v.medium);

@@ -359,7 +359,7 @@ Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std
     auto load = loadVdbDensity(p.lexically_normal().string(), options);
     if (!load) return Error{where + "file: " + load.error().message};
     for (std::string& w : load.value().warnings) warnings.push_back(std::move(w));
-    const double mean = load.value().grid->activeBoxMean();
+    const double mean = load.value().grid->activeBoxMean(t.exponent);
     if (!(mean > 0.0))
         return Error{where + "grid: grid '" + load.value().gridName + "' of " + p.lexically_normal().string() +
                      " has no positive values, so it cannot modulate a density (a texture is measured against its "

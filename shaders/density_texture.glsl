@@ -26,7 +26,7 @@ float densityTextureFactor(VolumeData v, vec3 worldPos) {
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 ijk = ivec3((corner & 1) != 0 ? c.hi.x : c.lo.x, (corner & 2) != 0 ? c.hi.y : c.lo.y,
                           (corner & 4) != 0 ? c.hi.z : c.lo.z);
-        float value = textureVoxel(buf, acc, ijk);
+        float value = textureShape(textureVoxel(buf, acc, ijk), v.textureParams.w);
         if (corner < 4) lo[corner] = value;
         else hi[corner - 4] = value;
     }

@@ -130,6 +130,39 @@ TEST_F(DensityTextureTest, SamplesTheKnownPeriodicFieldWrappingAtTheSeam) {
     EXPECT_EQ(densityTextureFactor(cs2, 0, q), 0.0f);
 }
 
+// The contrast exponent raises each voxel's value to it before the trilinear mix, and the texture
+// is measured against the mean of value^exponent: at voxel centres the factor is field^e / mean(field^e),
+// half way across the seam the average of the two voxels' field^e over that mean; strength 0 is the
+// plain volume, exponent 0 a flat texture (factor 1).
+TEST_F(DensityTextureTest, ExponentShapesEachVoxelAndKeepsTheMeanRule) {
+    ASSERT_TRUE(grid_);
+    const double e = 2.5;
+    double mean = 0.0;
+    for (int i = 0; i < kN; ++i)
+        for (int j = 0; j < kN; ++j)
+            for (int k = 0; k < kN; ++k) mean += std::pow(field(i, j, k), e);
+    mean /= double(kN) * kN * kN;
+    DensityTexture t = texture(grid_);
+    t.exponent = static_cast<float>(e);
+    t.mean = static_cast<float>(grid_->activeBoxMean(t.exponent));
+    EXPECT_NEAR(t.mean, mean, 1e-5 * mean);
+    Scene s = texturedScene(t);
+    const CompiledScene cs = compileScene(s);
+    const float voxel = kTile / kN;
+    for (int i : {0, 4, 9, 12}) {
+        const glm::vec3 p(static_cast<float>(i) * voxel, 3.0f * voxel, 1.0f * voxel);
+        EXPECT_NEAR(densityTextureFactor(cs, 0, p), std::pow(field(i, 3, 1), e) / mean, 2e-4) << i;
+    }
+    const glm::vec3 seam((kN - 0.5f) * voxel, 0.0f, 0.0f);
+    EXPECT_NEAR(densityTextureFactor(cs, 0, seam), 0.5 * (std::pow(field(kN - 1, 0, 0), e) + std::pow(field(0, 0, 0), e)) / mean, 2e-4);
+    s.volumes[0].density_texture->strength = 0.0f;
+    EXPECT_EQ(densityTextureFactor(compileScene(s), 0, seam), 1.0f);
+    s.volumes[0].density_texture->strength = 1.0f;
+    s.volumes[0].density_texture->exponent = 0.0f;
+    s.volumes[0].density_texture->mean = static_cast<float>(grid_->activeBoxMean(0.0f));
+    EXPECT_NEAR(densityTextureFactor(compileScene(s), 0, seam), 1.0f, 1e-6);
+}
+
 // The CPU froxel renderer (the GPU's oracle) matches the reference on the textured box about as well
 // as on the plain one, and the texture changes the image far more than that error (so this can fail).
 // Thin emissive fog over a black sky, unlit (lights add their own froxel error, the same with and
@@ -294,6 +327,7 @@ TEST_F(DensityTextureTest, BadInputIsOneSentenceAndExitCodeTwo) {
         {R"({"file": "noise.vdb", "grid": "wind"})", "volumes[0].density_texture.file"},
         {R"({"file": "noise.vdb", "grid": "noise", "tile_size_m": 0})", "volumes[0].density_texture.tile_size_m"},
         {R"({"file": "noise.vdb", "strength": -1})", "volumes[0].density_texture.strength"},
+        {R"({"file": "noise.vdb", "grid": "noise", "exponent": -0.5})", "volumes[0].density_texture.exponent"},
         {R"({"file": "noise.vdb", "octaves": 3})", "volumes[0].density_texture.octaves"},
         {R"({"grid": "noise"})", "volumes[0].density_texture.file"},
         {R"({"file": "zero.vdb", "grid": "noise"})", "volumes[0].density_texture.grid"},

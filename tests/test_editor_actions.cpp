@@ -392,6 +392,42 @@ TEST(EditorView, PickSelectsTheNearestVolumeOrTheLightUnderTheCursor) {
     EXPECT_EQ(at(lightU, 0.5f), "none");
 }
 
+// An ellipsoid or a cylinder is picked by its own surface, not its box: a ray through the box's
+// corner misses them; the selection outline lies on the shape (points at radius 1 of a sphere of
+// scale 2), and `add volume ellipsoid|cylinder` adds them.
+TEST(EditorView, EllipsoidAndCylinderArePickedByTheirSurfaceAndOutlined) {
+    Scene s;
+    s.camera.position = {0.0f, 0.0f, 10.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.fov_y_deg = 60.0f;
+    Volume v;
+    v.type = VolumeType::Ellipsoid;
+    v.transform.scale = glm::vec3(2.0f);
+    s.volumes = {v};
+    const float aspect = 1.0f, tanY = std::tan(glm::radians(30.0f));
+    // Window fraction of world (x, y, 0) seen from z = 9 (the box's front face is at z = 1).
+    auto u = [&](float x) { return 0.5f + 0.5f * x / (9.0f * tanY * aspect); };
+    auto v01 = [&](float y) { return 0.5f - 0.5f * y / (9.0f * tanY); };
+    EXPECT_TRUE(pick(s, aspect, u(0.0f), v01(0.0f)).has_value());
+    EXPECT_FALSE(pick(s, aspect, u(0.95f), v01(0.95f)).has_value());  // inside the box's front face, off the sphere
+    s.volumes[0].type = VolumeType::Cylinder;
+    EXPECT_TRUE(pick(s, aspect, u(0.6f), v01(0.5f)).has_value());
+    EXPECT_FALSE(pick(s, aspect, u(0.95f), v01(0.95f)).has_value());
+    s.volumes[0].type = VolumeType::Box;
+    EXPECT_TRUE(pick(s, aspect, u(0.95f), v01(0.95f)).has_value());
+    s.volumes[0].type = VolumeType::Ellipsoid;
+    const auto lines = volumeWireframe(s.volumes[0]);
+    ASSERT_FALSE(lines.empty());
+    for (const auto& l : lines) EXPECT_NEAR(glm::length(l[0]), 1.0f, 1e-5f);
+    s.volumes[0].type = VolumeType::Box;
+    EXPECT_EQ(volumeWireframe(s.volumes[0]).size(), 12u);
+    Document doc;
+    run(doc, "add volume cylinder smoke");
+    run(doc, "add volume ellipsoid cloud");
+    EXPECT_EQ(doc.scene().volumes.back().type, VolumeType::Ellipsoid);
+    EXPECT_EQ(doc.scene().volumes[doc.scene().volumes.size() - 2].type, VolumeType::Cylinder);
+}
+
 // The translate gizmo's drag: the object follows the cursor along one world axis only, snapped
 // when asked; a ray along the axis gives no drag rather than a jump.
 TEST(EditorView, GizmoDragMovesAlongOneAxisWithSnapping) {

@@ -175,6 +175,18 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     VariantKey bare;
     bare.vdbShadows = bare.sunShadowMap = bare.localShadowMaps = false;
     EXPECT_EQ(variantShaderName("light_exact", Variant::Light, bare), "light_exact_novdb_nosun_nolocal.comp");
+    // The sampled fog shadows of ellipsoids and cylinders (shaders/CMakeLists.txt BRUME_SHAPES_SHADERS).
+    VariantKey shaped;
+    shaped.shapes = true;
+    EXPECT_EQ(variantShaderName("distant_fog", Variant::Shapes, shaped), "distant_fog_shapes.comp");
+    EXPECT_EQ(variantShaderName("distant_fog", Variant::Shapes, {}), "distant_fog.comp");
+    bare.shapes = true;
+    EXPECT_EQ(variantShaderName("light_exact", Variant::Light, bare), "light_exact_novdb_nosun_nolocal_shapes.comp");
+    VariantKey vdbShaped = shaped;
+    vdbShaped.vdb = true;
+    vdbShaped.encoding = VdbEncoding::Fp16;
+    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, vdbShaped), "shadow_volume_vdb_fp16_shapes.comp");
+    EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, shaped), "voxelize.comp");
 }
 
 }  // namespace

@@ -243,6 +243,31 @@ TEST(GodotExport, EveryValueFollowsTheMapping) {
 
 // Godot's fog extinction is the FogMaterial density (Beer-Lambert, e^(-density L)); with the exported
 // density, the transmittance through a homogeneous box equals Brume's reference render of it.
+// Ellipsoid and cylinder volumes are Godot's shapes 0 and 2 with the box's size rule; height_falloff k
+// becomes FogMaterial.height_falloff = k / ln 2 with the density scaled by e^(-k (centre - bottom)),
+// so that above the centre Godot's min(1, 2^(-h (y - centre))) x density is Brume's density.
+TEST(GodotExport, EllipsoidAndCylinderAreGodotShapesWithHeightFalloff) {
+    TempDir t("godot", "shapes");
+    std::ofstream(t.path / "s.json") << R"({"brume_scene": 1, "volumes": [
+        {"type": "ellipsoid", "name": "e", "transform": {"translation": [0, 3, 0], "scale": [2, 4, 3]},
+         "height_falloff": 0.5, "medium": {"scattering": [0.2, 0.2, 0.2], "absorption": [0, 0, 0]}},
+        {"type": "cylinder", "name": "c", "transform": {"scale": [1, 2, 1]}, "edge_fade": 0}]})";
+    const CliRun r = brumeIn(t.path, "export s.json --to godot -o s.tscn");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string text = readText(t.path / "s.tscn");
+    const std::vector<Section> s = parseTscn(text);
+    const Section& e = node(s, "e");
+    EXPECT_EQ(num(e, "shape"), 0);
+    expectVec(e.props.at("size"), glm::vec3(2, 4, 3), "size");
+    const Section& eMat = resource(s, e.props.at("material"));
+    EXPECT_NEAR(num(eMat, "height_falloff"), 0.5 / std::numbers::ln2, 1e-5);
+    EXPECT_NEAR(num(eMat, "density"), 0.2 * std::exp(-0.5 * 2.0), 1e-6);  // the bottom is 2 m below the centre
+    EXPECT_NE(text.find("; loss: volumes[0] \"e\" (ellipsoid): height_falloff"), std::string::npos) << text;  // reported
+    const Section& c = node(s, "c");
+    EXPECT_EQ(num(c, "shape"), 2);
+    EXPECT_EQ(num(resource(s, c.props.at("material")), "height_falloff"), 0.0);
+}
+
 TEST(GodotExport, HomogeneousBoxTransmittanceMatchesBrume) {
     TempDir t("godot", "transmittance");
     const std::string sceneText = R"({"brume_scene": 1,

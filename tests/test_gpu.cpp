@@ -306,6 +306,33 @@ TEST_F(GpuTest, FogShadowsOnFogAndGroundMatchCpu) {
     expectMatchesCpu(s, "fog shadows, low", Quality::Low);
 }
 
+// Ellipsoid and cylinder volumes and height_falloff (issue 15): the box kind's shape selector and
+// the sampled fog shadow integral (shared/shadows.h shapeDensityLength), froxels and ground alike.
+TEST_F(GpuTest, EllipsoidCylinderAndHeightFalloffMatchCpu) {
+    Scene s = baseScene();
+    Volume ellipsoid = box();
+    ellipsoid.type = VolumeType::Ellipsoid;
+    ellipsoid.transform.translation = {-1.0f, 1.5f, 0.0f};
+    ellipsoid.transform.scale = {2.5f, 2.0f, 2.0f};
+    ellipsoid.medium.scattering = glm::vec3(2.0f);
+    Volume cylinder = box();
+    cylinder.type = VolumeType::Cylinder;
+    cylinder.transform.translation = {1.2f, 1.0f, -0.5f};
+    cylinder.transform.rotation_deg = {10.0f, 0.0f, 20.0f};
+    cylinder.height_falloff = 0.8f;
+    Volume falling = box();
+    falling.transform.translation = {0.0f, 0.5f, 1.0f};
+    falling.transform.scale = {4.0f, 1.0f, 1.0f};
+    falling.height_falloff = 1.5f;
+    s.volumes = {ellipsoid, cylinder, falling};
+    Light point = pointLight({0.2f, 0.6f, 0.5f}, {1.0f, 0.8f, 0.6f});
+    point.shadows = true;
+    s.lights = {sun(), point};
+    s.geometry = ground();
+    expectMatchesCpu(s, "shapes, high", Quality::High);
+    expectMatchesCpu(s, "shapes, low", Quality::Low);
+}
+
 // Past the froxel far the composite continues height and depth fog in closed form to the surface
 // or the camera far; here that part carries most of the fog.
 TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {

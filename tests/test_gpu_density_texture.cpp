@@ -131,6 +131,16 @@ TEST_F(GpuDensityTexture, TexturedBoxMatchesCpu) {
     expectMatchesCpu(scene(false, 1.0f), "box");
 }
 
+// The contrast exponent (each voxel's value^exponent before the trilinear mix, shared/density_texture.h).
+TEST_F(GpuDensityTexture, TextureExponentMatchesCpu) {
+    ASSERT_TRUE(noiseGrid);
+    Scene s = scene(false, 1.0f);
+    DensityTexture& t = *s.volumes[0].density_texture;
+    t.exponent = 2.5f;
+    t.mean = static_cast<float>(noiseGrid->activeBoxMean(t.exponent));
+    expectMatchesCpu(s, "box, exponent 2.5");
+}
+
 TEST_F(GpuDensityTexture, TexturedBoxAndVdbVolumeMatchCpu) {
     ASSERT_TRUE(noiseGrid && ballGrid);
     expectMatchesCpu(scene(true, 1.5f), "box + vdb ball");

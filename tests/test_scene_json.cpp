@@ -259,11 +259,14 @@ private:
     }
     Volume volume() {
         Volume v;
-        v.type = static_cast<VolumeType>(pick(4));
+        v.type = static_cast<VolumeType>(pick(6));
         v.medium = {vec(settings::medium_scattering), vec(settings::medium_absorption), vec(settings::medium_emission),
                     value(settings::medium_phase_g)};
-        if (v.type == VolumeType::Box || v.type == VolumeType::Vdb) v.transform = transform();
-        if (v.type == VolumeType::Box) v.edge_fade = value(settings::volume_edge_fade);
+        if (isLocalShape(v.type) || v.type == VolumeType::Vdb) v.transform = transform();
+        if (isLocalShape(v.type)) {
+            v.edge_fade = value(settings::volume_edge_fade);
+            if (coin()) v.height_falloff = value(settings::volume_height_falloff);
+        }
         if (v.type == VolumeType::Height) {
             v.profile = static_cast<HeightProfile>(pick(2));
             v.base_height = value(settings::volume_base_height);
@@ -394,7 +397,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 1, "fog": {}})",
      "scene.json: fog: unknown key; allowed in a scene: brume_scene, camera, render, froxels, temporal, ambient, lights, volumes, geometry"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "falloff": 1}]})",
-     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, density_texture, medium, keys"},
+     "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, height_falloff, density_texture, medium, keys"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "medium": {"albedo": 1}}]})",
      "scene.json: volumes[0].medium.albedo: unknown key; allowed in a medium: scattering, absorption, emission, phase_g"},
     {R"({"brume_scene": 1, "camera": {"fov_y_deg": "wide"}})", "scene.json: camera.fov_y_deg: expected a number, got \"wide\""},
@@ -408,7 +411,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 1, "lights": {}})", "scene.json: lights: expected an array, got an object"},
     {R"({"brume_scene": 1, "camera": {"near": 1e999}})", "scene.json: line 1, column 39: number 1e999 is not finite (it overflows a double)"},
     {R"({"brume_scene": 1, "volumes": [{}, {"type": "box", "medium": {"phase_g": 1.5}}]})",
-     "scene.json: volumes[0].type: missing required key; choices: box, height, depth, vdb, mesh"},
+     "scene.json: volumes[0].type: missing required key; choices: box, height, depth, vdb, mesh, ellipsoid, cylinder"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box"}, {"type": "box"}, {"type": "box", "medium": {"phase_g": 1.5}}]})",
      "scene.json: volumes[2].medium.phase_g: 1.5 is out of range [-1, 1]"},
     {R"({"brume_scene": 1, "camera": {"fov_y_deg": 180}})", "scene.json: camera.fov_y_deg: 180 deg is out of range [1, 179] deg"},
@@ -417,7 +420,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 1, "render": {"height": 0}})", "scene.json: render.height: 0 px is out of range [1, 16384] px"},
     {R"({"brume_scene": 1, "render": {"quality": "extreme"}})",
      "scene.json: render.quality: unknown choice \"extreme\"; choices: low, medium, high, ultra"},
-    {R"({"brume_scene": 1, "volumes": [{"type": "fog"}]})", "scene.json: volumes[0].type: unknown choice \"fog\"; choices: box, height, depth, vdb, mesh"},
+    {R"({"brume_scene": 1, "volumes": [{"type": "fog"}]})", "scene.json: volumes[0].type: unknown choice \"fog\"; choices: box, height, depth, vdb, mesh, ellipsoid, cylinder"},
     {R"({"brume_scene": 1, "volumes": [{"type": "vdb"}]})", "scene.json: volumes[0].file: missing required key (the OpenVDB file of a vdb volume)"},
     {R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": ""}]})", "scene.json: volumes[0].file: must not be empty"},
     {R"({"brume_scene": 1, "camera": {"near": 5, "far": 5}})", "scene.json: camera.far: 5 m must exceed camera.near (5 m)"},
@@ -522,10 +525,10 @@ TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
 TEST(SceneJsonKeys, MisspeltKeyInsideDensityTexture) {
     EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"fiel": "noise.vdb"}}]})"),
               "scene.json: volumes[0].density_texture.fiel: unknown key (did you mean \"file\"?); allowed in "
-              "density_texture: file, grid, tile_size_m, scroll_mps, strength");
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength, exponent");
     EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"file": "n.vdb", "strenght": 2}}]})"),
               "scene.json: volumes[0].density_texture.strenght: unknown key (did you mean \"strength\"?); allowed in "
-              "density_texture: file, grid, tile_size_m, scroll_mps, strength");
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength, exponent");
     // Without the typo the missing file is what is wrong.
     EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"grid": "density"}}]})"),
               "scene.json: volumes[0].density_texture.file: missing required key (the OpenVDB file of the texture)");
@@ -621,7 +624,7 @@ TEST(SceneJsonKeyframes, BadKeysNameTheirPath) {
          "must be in increasing time"},
         {R"({"brume_scene": 1, "volumes": [{"type": "box", "keys": {"medium.scatering": [{"time": 0, "value": [0, 0, 0]}]}}]})",
          "scene.json: volumes[0].keys.medium.scatering: not a keyable setting of a box volume (did you mean "
-         "\"medium.scattering\"?); keyable: edge_fade, transform.translation, transform.rotation_deg, transform.scale, "
+         "\"medium.scattering\"?); keyable: edge_fade, height_falloff, transform.translation, transform.rotation_deg, transform.scale, "
          "medium.scattering, medium.absorption, medium.emission, medium.phase_g"},
         {R"({"brume_scene": 1, "volumes": [{"type": "height", "keys": {"density_texture.strength": [{"time": 0, "value": 1}]}}]})",
          "scene.json: volumes[0].keys.density_texture.strength: not a keyable setting of a height volume; keyable: "

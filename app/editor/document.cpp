@@ -153,7 +153,8 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
         if (!t) continue;
         if (was && was->density && t->file == was->file && t->grid == was->grid) {
             t->density = was->density;
-            t->mean = was->mean;
+            // The mean is of value^exponent: measured again when the exponent changes.
+            t->mean = t->exponent == was->exponent ? was->mean : static_cast<float>(was->density->activeBoxMean(t->exponent));
             continue;
         }
         std::vector<std::string> warnings;
@@ -252,10 +253,12 @@ Result<void> Document::add(const std::vector<std::string>& a) {
     if (a[0] == "volume") {
         Volume v;
         if (a[1] == "box") v.type = VolumeType::Box;
+        else if (a[1] == "ellipsoid") v.type = VolumeType::Ellipsoid;
+        else if (a[1] == "cylinder") v.type = VolumeType::Cylinder;
         else if (a[1] == "height") v.type = VolumeType::Height;
         else if (a[1] == "depth") v.type = VolumeType::Depth;
         else if (a[1] == "vdb" && a.size() == 4) v.type = VolumeType::Vdb, v.file = a[3];
-        else return Error{"\"" + a[1] + "\" is not a volume type to add: use box, height, depth or vdb NAME FILE."};
+        else return Error{"\"" + a[1] + "\" is not a volume type to add: use box, ellipsoid, cylinder, height, depth or vdb NAME FILE."};
         // A vdb volume arrives with its grid, as `import vdb` does; a file that cannot be read refuses the add.
         if (v.type == VolumeType::Vdb) {
             const std::filesystem::path p(v.file);

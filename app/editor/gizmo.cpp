@@ -236,6 +236,14 @@ bool scale(Editor& e, GizmoState& g, const View& v, const std::string& path, glm
     return true;
 }
 
+// The selected volume's shape, thin, under the handles (view.h volumeWireframe).
+void outline(const View& v, const Volume& vol) {
+    for (const std::array<glm::vec3, 2>& seg : volumeWireframe(vol)) {
+        const std::optional<ImVec2> a = v.px(seg[0]), b = v.px(seg[1]);
+        if (a && b) v.draw->AddLine(*a, *b, kCentre, 1.0f);
+    }
+}
+
 }  // namespace
 
 bool transformGizmo(Editor& e, GizmoState& g, double now) {
@@ -249,6 +257,7 @@ bool transformGizmo(Editor& e, GizmoState& g, double now) {
         g.axis = -1;
         return false;
     }
+    if (sel.kind == Kind::Volume && sel.index < scene.volumes.size()) outline(*v, scene.volumes[sel.index]);
     if (e.gizmoMode == GizmoMode::Translate) return translate(e, g, *v, positionPath(scene, kind, sel.index), now);
     const std::string rotPath = rotationPath(scene, kind, sel.index);
     const std::optional<glm::vec3> rot = currentVec3(e, rotPath);

@@ -97,7 +97,7 @@ std::string rotationPath(const Scene& scene, const std::string& kind, size_t ind
     const std::string i = "[" + std::to_string(index) + "]";
     if (kind == "volume" && index < scene.volumes.size()) {
         const VolumeType t = scene.volumes[index].type;
-        return t == VolumeType::Box || t == VolumeType::Vdb || t == VolumeType::Mesh ? "volumes" + i + ".transform.rotation_deg" : "";
+        return isLocalShape(t) || t == VolumeType::Vdb || t == VolumeType::Mesh ? "volumes" + i + ".transform.rotation_deg" : "";
     }
     if (kind == "light" && index < scene.lights.size())
         return scene.lights[index].type == LightType::Spot ? "lights" + i + ".direction" : "";

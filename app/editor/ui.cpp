@@ -218,7 +218,7 @@ void outliner(Editor& e, double now) {
     ImGui::Begin("Outliner");
     if (ImGui::Selectable("Scene settings", e.selection().kind == Kind::None)) runOrNotify(e, "select none", now);
     const Scene& s = e.doc().scene();
-    outlinerList(e, Kind::Volume, labels(s.volumes), "box|height|depth", now);
+    outlinerList(e, Kind::Volume, labels(s.volumes), "box|ellipsoid|cylinder|height|depth", now);
     outlinerList(e, Kind::Light, labels(s.lights), "directional|point|spot", now);
     outlinerList(e, Kind::Geometry, labels(s.geometry), "plane|box|sphere", now);
     ImGui::End();

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/density_grid.h"
+#include "core/compile.h"
 
 namespace brume::editor {
 namespace {
@@ -34,7 +35,7 @@ struct PlacedBox {
 
 std::optional<PlacedBox> placedBox(const Volume& v) {
     const glm::mat4 world = v.transform.worldFromLocal();
-    if (v.type == VolumeType::Box) return PlacedBox{world, glm::vec3(-0.5f), glm::vec3(0.5f)};
+    if (isLocalShape(v.type)) return PlacedBox{world, glm::vec3(-0.5f), glm::vec3(0.5f)};
     if ((v.type == VolumeType::Vdb || v.type == VolumeType::Mesh) && v.density && !v.density->empty())
         return PlacedBox{world * v.density->gridFromIndex(), v.density->indexMin(), v.density->indexMax()};
     return std::nullopt;  // height and depth fog fill the world; an unloaded vdb is empty
@@ -61,7 +62,58 @@ std::optional<float> enterBox(const PlacedBox& b, glm::vec3 origin, glm::vec3 di
     return t0;
 }
 
+// Where the ray enters a volume: an ellipsoid or a cylinder by its own surface (the interval the
+// renderers' fog shadows use), anything else by its box.
+std::optional<float> enterVolume(const Volume& vol, const PlacedBox& b, glm::vec3 origin, glm::vec3 dir) {
+    if (vol.type != VolumeType::Ellipsoid && vol.type != VolumeType::Cylinder) return enterBox(b, origin, dir);
+    const glm::mat4 localFromWorld = glm::inverse(b.worldFromBox);
+    const glm::vec3 o = glm::vec3(localFromWorld * glm::vec4(origin, 1.0f));
+    const glm::vec3 d = glm::vec3(localFromWorld * glm::vec4(dir, 0.0f));
+    const int shape = vol.type == VolumeType::Ellipsoid ? shd::SHAPE_ELLIPSOID : shd::SHAPE_CYLINDER;
+    const glm::vec2 in = shd::shapeInterval(shape, o, d, 0.5f);
+    if (!(in.y >= std::max(in.x, 0.0f))) return std::nullopt;
+    return std::max(in.x, 0.0f);
+}
+
 }  // namespace
+
+std::vector<std::array<glm::vec3, 2>> volumeWireframe(const Volume& v) {
+    std::vector<std::array<glm::vec3, 2>> lines;
+    if (!isLocalShape(v.type)) return lines;
+    const glm::mat4 world = v.transform.worldFromLocal();
+    auto add = [&](glm::vec3 a, glm::vec3 b) {
+        lines.push_back({glm::vec3(world * glm::vec4(a, 1.0f)), glm::vec3(world * glm::vec4(b, 1.0f))});
+    };
+    constexpr int kSegments = 48;
+    // A circle of radius 0.5 in the plane of local axes (a, b), at c along the third axis.
+    auto circle = [&](int a, int b, glm::vec3 centre) {
+        for (int i = 0; i < kSegments; ++i) {
+            glm::vec3 p = centre, q = centre;
+            const float t0 = 6.2831853f * float(i) / kSegments, t1 = 6.2831853f * float(i + 1) / kSegments;
+            p[a] += 0.5f * std::cos(t0), p[b] += 0.5f * std::sin(t0);
+            q[a] += 0.5f * std::cos(t1), q[b] += 0.5f * std::sin(t1);
+            add(p, q);
+        }
+    };
+    if (v.type == VolumeType::Ellipsoid) {
+        circle(0, 1, glm::vec3(0.0f)), circle(1, 2, glm::vec3(0.0f)), circle(0, 2, glm::vec3(0.0f));
+    } else if (v.type == VolumeType::Cylinder) {
+        circle(0, 2, glm::vec3(0.0f, -0.5f, 0.0f)), circle(0, 2, glm::vec3(0.0f, 0.5f, 0.0f));
+        for (const glm::vec2 xz : {glm::vec2(0.5f, 0.0f), glm::vec2(-0.5f, 0.0f), glm::vec2(0.0f, 0.5f), glm::vec2(0.0f, -0.5f)})
+            add(glm::vec3(xz.x, -0.5f, xz.y), glm::vec3(xz.x, 0.5f, xz.y));
+    } else {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int k = 0; k < 4; ++k) {
+                glm::vec3 a(0.0f);
+                a[(axis + 1) % 3] = (k & 1) ? 0.5f : -0.5f;
+                a[(axis + 2) % 3] = (k & 2) ? 0.5f : -0.5f;
+                glm::vec3 b = a;
+                a[axis] = -0.5f, b[axis] = 0.5f;
+                add(a, b);
+            }
+    }
+    return lines;
+}
 
 Scene visibleScene(const Scene& scene) {
     Scene s = scene;
@@ -150,7 +202,7 @@ std::optional<Picked> pick(const Scene& scene, float aspect, float u, float v) {
     for (size_t i = 0; i < scene.volumes.size(); ++i) {
         if (scene.volumes[i].hidden) continue;
         const std::optional<PlacedBox> b = placedBox(scene.volumes[i]);
-        const std::optional<float> t = b ? enterBox(*b, c.position, dir) : std::nullopt;
+        const std::optional<float> t = b ? enterVolume(scene.volumes[i], *b, c.position, dir) : std::nullopt;
         if (t && *t < bestT) bestT = *t, best = Picked{"volume", i};
     }
     // A light is a point: hit when the ray passes within 2% of the view height at its depth. A hit
@@ -206,7 +258,7 @@ std::string positionPath(const Scene& scene, const std::string& kind, size_t ind
     const std::string i = "[" + std::to_string(index) + "]";
     if (kind == "volume" && index < scene.volumes.size()) {
         const VolumeType t = scene.volumes[index].type;
-        return t == VolumeType::Box || t == VolumeType::Vdb || t == VolumeType::Mesh ? "volumes" + i + ".transform.translation" : "";
+        return isLocalShape(t) || t == VolumeType::Vdb || t == VolumeType::Mesh ? "volumes" + i + ".transform.translation" : "";
     }
     if (kind == "light" && index < scene.lights.size())
         return scene.lights[index].type == LightType::Directional ? "" : "lights" + i + ".position";

@@ -3,9 +3,11 @@
 // look, frame, pick) call these, so scripts and tests go through the same code as the mouse.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -41,9 +43,14 @@ struct Picked {
     size_t index = 0;
 };
 // The visible object under the window position (u, v) in [0, 1] from the top-left, for a window of
-// `aspect` = width / height: the nearest box or vdb volume whose box the ray enters, or light
+// `aspect` = width / height: the nearest box, ellipsoid, cylinder (by its surface) or vdb volume
+// (by its box) the ray enters, or light
 // (point, spot) within 2% of the view height of the ray; nothing when the ray misses them all.
 std::optional<Picked> pick(const Scene& scene, float aspect, float u, float v);
+
+// World-space line segments outlining a box, ellipsoid or cylinder volume (the box's 12 edges; three
+// great circles; two rims and four sides) for the viewport's selection outline; empty for the rest.
+std::vector<std::array<glm::vec3, 2>> volumeWireframe(const Volume& v);
 
 // Translate gizmo. The world direction of the camera ray through window fractions (u, v).
 glm::vec3 rayDirection(const Camera& c, float aspect, float u, float v);

@@ -37,7 +37,15 @@ BRUME_FUNC TextureCell textureCell(VolumeData v, vec3 worldPos, float time) {
     return c;
 }
 
-// The factor on the volume's density for a texture value: 1 + strength (value / mean - 1), held at
+// A texture voxel's value under the contrast exponent: value^exponent, applied to each of the 8
+// voxels before the trilinear mix, so that the mixed field's mean over a tile is exactly the voxels'
+// mean of value^exponent (the mean rule below holds for any exponent). Exponent 1 returns the value
+// untouched (negative values too), so scenes without an exponent render as before.
+BRUME_FUNC float textureShape(float value, float exponent) {
+    return exponent == 1.0f ? value : pow(max(value, 1.0e-30f), exponent);
+}
+
+// The factor on the volume's density for a (shaped) texture value: 1 + strength (value / mean - 1), held at
 // >= 0. Strength 0 gives exactly 1 (the plain volume); strength <= 1 keeps the mean density (the
 // factor's mean over a tile is exactly 1, since trilinear interpolation of a periodic field keeps its
 // voxels' mean), which is what fog shadows use (docs/vdb.md).

@@ -9,13 +9,32 @@
 
 BRUME_NAMESPACE_BEGIN
 
+// The box kind's shapes as one distance u of q = 2 x local position: u < 1 inside, u = 1 on the
+// surface, and the edge fade is a function of u alone. Box: max |q_a|; ellipsoid: |q|; cylinder:
+// max(|q.xz|, |q.y|). All three are computed and one selected: no branch.
+BRUME_FUNC float shapeDistance(int shape, vec3 q) {
+    vec3 a = abs(q);
+    float box = max(a.x, max(a.y, a.z));
+    float ellipsoid = length(q);
+    float cylinder = max(length(vec2(q.x, q.z)), a.y);
+    return shape == SHAPE_ELLIPSOID ? ellipsoid : (shape == SHAPE_CYLINDER ? cylinder : box);
+}
+
+// The edge fade at shape distance u (< 1): 1 inside 1 - fade, smoothstep down to 0 at u = 1.
+BRUME_FUNC float edgeFade(float u, float fade) { return fade > 0.0f ? 1.0f - smoothstep(1.0f - fade, 1.0f, u) : 1.0f; }
+
+// height_falloff: exp(-falloff (y - bottom)), bottom the volume's lowest world point. Exactly 1 when
+// the falloff is 0 (the default).
+BRUME_FUNC float localHeightFactor(VolumeData v, float worldY) {
+    return exp(-v.params.z * max(worldY - v.params.w, 0.0f));
+}
+
+// Density of a box, ellipsoid or cylinder volume (VOLUME_BOX with kind.y the shape).
 BRUME_FUNC float boxDensity(VolumeData v, vec3 worldPos) {
     vec3 q = vec3(v.localFromWorld * vec4(worldPos, 1.0f));
-    float d = max(abs(q.x), max(abs(q.y), abs(q.z))) * 2.0f;
+    float d = shapeDistance(boxShape(v), q * 2.0f);
     if (d >= 1.0f) return 0.0f;
-    float fade = v.params.x;
-    if (fade <= 0.0f) return 1.0f;
-    return 1.0f - smoothstep(1.0f - fade, 1.0f, d);
+    return edgeFade(d, v.params.x) * localHeightFactor(v, worldPos.y);
 }
 
 BRUME_FUNC float heightExponentialDensity(VolumeData v, vec3 worldPos) {

@@ -7,6 +7,11 @@
 //   box, hard edge   chord length of the ray through the oriented unit cube;
 //   box, edge fade   the chord split where two |q_a| cross (u = 2 max|q| is linear on each piece)
 //                    and the smoothstep integrated in closed form;
+//   ellipsoid, cylinder, and a box with height_falloff: the chord through the shape in closed
+//                    form, cut where the density has a kink (the inner shape where the fade
+//                    begins; a cylinder's side/cap seam), and 4-point Gauss-Legendre on each of the
+//                    five pieces (a fixed count: no data-dependent loop). Exact for hard edges
+//                    without falloff; tests/test_shapes.cpp measures the error (docs/shadows.md);
 //   height fog       distant.h's closed forms (exponential and linear profiles), to infinity for a sun;
 //   depth fog        not counted: it is aerial perspective measured from the camera (docs/reference.md).
 // VDB volumes contribute nothing until they have a sampler (their shadow will need a grid march).
@@ -113,12 +118,116 @@ BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
     return total;
 }
 
+// Parameter interval of o + s * d inside the ball of radius h; empty when x > y. The roots in the
+// form that does not cancel (q = -(b + sign(b) sqrt(disc))).
+BRUME_FUNC vec2 ballInterval(vec3 o, vec3 d, float h) {
+    float a = dot(d, d);
+    float b = dot(o, d);
+    float c = dot(o, o) - h * h;
+    float disc = b * b - a * c;
+    if (!(disc >= 0.0f) || !(a > 0.0f)) return vec2(1.0f, 0.0f);
+    float q = -(b + (b >= 0.0f ? sqrt(disc) : -sqrt(disc)));
+    if (q == 0.0f) return vec2(0.0f, 0.0f);  // o at the centre of a ball of radius 0
+    return sortedPair(q / a, c / q);
+}
+
+// Parameter interval inside the cylinder of radius h, |y| <= h (axis local Y).
+BRUME_FUNC vec2 cylinderInterval(vec3 o, vec3 d, float h) {
+    vec2 all = vec2(-BRUME_HUGE, BRUME_HUGE);
+    vec2 none = vec2(1.0f, 0.0f);
+    bool alongAxis = d.x * d.x + d.z * d.z <= 0.0f;
+    vec2 r = alongAxis ? (o.x * o.x + o.z * o.z <= h * h ? all : none)
+                       : ballInterval(vec3(o.x, 0.0f, o.z), vec3(d.x, 0.0f, d.z), h);
+    vec2 y = d.y != 0.0f ? sortedPair((-h - o.y) / d.y, (h - o.y) / d.y) : (abs(o.y) <= h ? all : none);
+    return vec2(max(r.x, y.x), min(r.y, y.y));
+}
+
+// Parameter interval of o + s * d inside a box-kind shape of half-size h (local coordinates).
+BRUME_FUNC vec2 shapeInterval(int shape, vec3 o, vec3 d, float h) {
+    if (shape == SHAPE_ELLIPSOID) return ballInterval(o, d, h);
+    if (shape == SHAPE_CYLINDER) return cylinderInterval(o, d, h);
+    return cubeInterval(o, d, h);
+}
+
+// Gauss-Legendre, 4 nodes, of the density over a piece [s0, s1] (lo, ld local; y0, dy world
+// height of o and its rate along the ray).
+BRUME_FUNC float shapeFadedPiece(VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float s0, float s1) {
+    float nodes[4] = {-0.8611363115940526f, -0.3399810435848563f, 0.3399810435848563f, 0.8611363115940526f};
+    float weights[4] = {0.3478548451374538f, 0.6521451548625461f, 0.6521451548625461f, 0.3478548451374538f};
+    float halfLen = 0.5f * (s1 - s0);
+    float mid = 0.5f * (s0 + s1);
+    float sum = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+        float s = mid + halfLen * nodes[i];
+        float u = shapeDistance(boxShape(v), (lo + ld * s) * 2.0f);
+        float density = u < 1.0f ? edgeFade(u, v.params.x) : 0.0f;
+        sum += weights[i] * density * exp(-v.params.z * max(y0 + dy * s - v.params.w, 0.0f));
+    }
+    return sum * halfLen;
+}
+
+// Whether volume v's fog shadow needs the sampled integral below (an ellipsoid, a cylinder, a box
+// with height_falloff) rather than the box's closed form.
+BRUME_FUNC bool needsShapeShadows(VolumeData v) {
+    return v.kind.x == VOLUME_BOX && (boxShape(v) != SHAPE_BOX || v.params.z > 0.0f);
+}
+
+// A cut on the chord: s clamped into [lo, hi]; NaN (no such point) lands on lo, making an empty piece.
+BRUME_FUNC float chordCut(float s, vec2 chord) { return s > chord.x ? min(s, chord.y) : chord.x; }
+
+// Integral of an ellipsoid's, a cylinder's or a height-falling box's density along o + s * d (d
+// unit), s in [0, maxDist] (the method: the header comment). The chord is cut where the density has
+// a kink: the inner shape's boundary (the fade begins) and, for a cylinder, where |q.xz| = |q.y|
+// (the side's fade meets the cap's); the five pieces between the sorted cuts are integrated by
+// Gauss-Legendre. A box's own kinks (six axis pairs) are not cut: its faded pieces err more.
+BRUME_FUNC float shapeDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
+    int shape = boxShape(v);
+    vec3 lo = vec3(v.localFromWorld * vec4(o, 1.0f));
+    vec3 ld = vec3(v.localFromWorld * vec4(d, 0.0f));
+    vec2 raw = shapeInterval(shape, lo, ld, 0.5f);
+    vec2 chord = vec2(max(raw.x, 0.0f), min(raw.y, maxDist));
+    if (!(chord.y > chord.x)) return 0.0f;
+    vec2 inner = shapeInterval(shape, lo, ld, 0.5f * (1.0f - v.params.x));
+    // A chord that misses the inner shape: both cuts at the chord's middle (where an ellipsoid's
+    // density peaks).
+    float m = 0.5f * (raw.x + raw.y);
+    bool hit = inner.y > inner.x;
+    float c[4];
+    c[0] = chordCut(hit ? inner.x : m, chord);
+    c[1] = chordCut(hit ? inner.y : m, chord);
+    // Cylinder: |q.xz|^2 = q.y^2 is a quadratic a s^2 + 2 b s + c = 0 along the ray.
+    float qa = ld.x * ld.x + ld.z * ld.z - ld.y * ld.y;
+    float qb = lo.x * ld.x + lo.z * ld.z - lo.y * ld.y;
+    float qc = lo.x * lo.x + lo.z * lo.z - lo.y * lo.y;
+    float root = sqrt(max(qb * qb - qa * qc, 0.0f));
+    bool kinked = shape == SHAPE_CYLINDER && qb * qb - qa * qc >= 0.0f && qa != 0.0f;
+    c[2] = chordCut(kinked ? (-qb - root) / qa : chord.x, chord);
+    c[3] = chordCut(kinked ? (-qb + root) / qa : chord.x, chord);
+    // Sorting network for 4 keys (5 compare-exchanges).
+    vec2 t;
+    t = sortedPair(c[0], c[1]); c[0] = t.x; c[1] = t.y;
+    t = sortedPair(c[2], c[3]); c[2] = t.x; c[3] = t.y;
+    t = sortedPair(c[0], c[2]); c[0] = t.x; c[2] = t.y;
+    t = sortedPair(c[1], c[3]); c[1] = t.x; c[3] = t.y;
+    t = sortedPair(c[1], c[2]); c[1] = t.x; c[2] = t.y;
+    float total = shapeFadedPiece(v, lo, ld, o.y, d.y, chord.x, c[0]);
+    for (int i = 0; i < 3; ++i) total += shapeFadedPiece(v, lo, ld, o.y, d.y, c[i], c[i + 1]);
+    return total + shapeFadedPiece(v, lo, ld, o.y, d.y, c[3], chord.y);
+}
+
 // Integral of one volume's density from p along unit dir over [0, maxDist] (BRUME_HUGE: to
 // infinity, a directional light). Depth and VDB volumes: 0 (see the header comment).
 // k: v's kind (a constant where the caller knows it: fog_shadow.glsl).
 BRUME_FUNC float shadowDensityLengthOfKind(int k, VolumeData v, vec3 p, vec3 dir, float maxDist) {
     // BRUME_VOLUME_KIND_USED: a kind the scene lacks is compiled out of specialized pipelines.
-    if (BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) return boxDensityLength(v, p, dir, maxDist);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) {
+#if defined(__cplusplus) || defined(BRUME_LOCAL_SHAPES)
+        // The box's closed form is exact without a height factor; every other case is sampled. GLSL
+        // has this only in the _shapes variants (gpu: VariantKey::shapes).
+        if (needsShapeShadows(v)) return shapeDensityLength(v, p, dir, maxDist);
+#endif
+        return boxDensityLength(v, p, dir, maxDist);
+    }
     if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_EXPONENTIAL) && k == VOLUME_HEIGHT_EXPONENTIAL)
         return heightExponentialLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
     if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_LINEAR) && k == VOLUME_HEIGHT_LINEAR)

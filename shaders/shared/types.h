@@ -15,6 +15,13 @@ BRUME_CONST int VOLUME_HEIGHT_LINEAR = 2;
 BRUME_CONST int VOLUME_DEPTH = 3;
 BRUME_CONST int VOLUME_VDB = 4;
 
+// VolumeData.kind.y of a VOLUME_BOX: the shape in its local unit cube. One volume kind for the three
+// shapes, so the renderers' loops over volumes gain no branch (docs/performance.md): media.h picks
+// the shape's distance with selects.
+BRUME_CONST int SHAPE_BOX = 0;
+BRUME_CONST int SHAPE_ELLIPSOID = 1;  // the sphere of diameter 1
+BRUME_CONST int SHAPE_CYLINDER = 2;   // diameter 1, height 1 along local Y
+
 // LightData.kind.x
 BRUME_CONST int LIGHT_DIRECTIONAL = 0;
 BRUME_CONST int LIGHT_POINT = 1;
@@ -37,14 +44,15 @@ struct VolumeData {
     vec4 sigmaS_g;        // rgb: scattering coefficient at density 1 [1/m]; a: phase g
     vec4 sigmaA;          // rgb: absorption coefficient at density 1 [1/m]; a: unused
     vec4 emission;        // rgb: emitted radiance per meter at density 1; a: unused
-    vec4 params;          // box: x edge_fade. height: x base_height, y falloff [1/m] or transition
+    vec4 params;          // box: x edge_fade, z height_falloff [1/m], w bottom: lowest world y [m]. height: x base_height, y falloff [1/m] or transition
                           // height [m]. depth: x visibility_distance, y start_distance. vdb: x density_scale, y shortest voxel edge [m]
     ivec4 kind;           // x: VOLUME_*; vdb: y byte offset of its grid in the GPU grid buffer, z 1 = has a grid,
-                          // w byte offset of its occupancy cells after y (vdb.h), 0 = no culling
+                          // w byte offset of its occupancy cells after y (vdb.h), 0 = no culling;
+                          // box: y SHAPE_*
     vec4 worldMin;        // xyz: world-space bounds of non-zero density (+-BRUME_HUGE when unbounded)
     vec4 worldMax;
     // Density texture (density_texture.h), all zero when the volume has none.
-    vec4 textureParams;   // x: 1 / tile_size [1/m]; y: strength; z: 1 / the grid's mean; w unused
+    vec4 textureParams;   // x: 1 / tile_size [1/m]; y: strength; z: 1 / the mean of value^exponent; w: exponent
     vec4 textureScroll;   // xyz: scroll velocity [m/s]; w unused
     ivec4 textureMin;     // xyz: the grid's active index box minimum; w: byte offset in the GPU grid buffer
     ivec4 textureSize;    // xyz: active index box size in voxels (the period); w: 1 = has a texture
@@ -68,6 +76,7 @@ BRUME_FUNC int lightShadowSlot(LightData l) { return l.kind.z - 1; }  // point/s
 BRUME_FUNC int vdbGridOffset(VolumeData v) { return v.kind.y; }      // byte offset in the grid buffer
 BRUME_FUNC bool vdbHasGrid(VolumeData v) { return v.kind.z != 0; }
 BRUME_FUNC int vdbOccupancyOffset(VolumeData v) { return v.kind.w; }  // after the grid, 0 = no culling
+BRUME_FUNC int boxShape(VolumeData v) { return v.kind.y; }           // SHAPE_*
 
 // Per-frame constants shared by every pass. 416 bytes.
 struct FrameUniforms {
