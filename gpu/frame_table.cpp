@@ -46,10 +46,11 @@ const std::array<PassDecl, 8> kPasses{{
     {"integrate", "integrate", Variant::None, Dispatch::Columns, When::Always, Record::Dispatch,
      {B::frame, I::sourceImage, I::mediaExtinction},
      {I::integratedScattering, I::integratedTransmittance}},
-    // Fog over the surfaces, continued in closed form past the froxel far (shared/distant.h).
+    // Fog over the surfaces, continued in closed form past the froxel far (shared/distant.h), plus the
+    // lights' glow per pixel (shared/glow.h, which reads the media at the light).
     {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, I::integratedScattering, I::integratedTransmittance,
-      I::sceneColor, I::sceneDepth},
+      I::sceneColor, I::sceneDepth, I::mediaScatteringG, I::mediaExtinction},
      {I::outputImage}},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,

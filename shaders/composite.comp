@@ -64,6 +64,25 @@ Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
     return a;
 }
 
+// The per-pixel part of the point and spot lights' glow (shared/glow.h; core: compositeRow).
+vec3 lightGlow(vec2 pixel, float viewDepth) {
+    vec3 viewRay = viewRayFromPixel(pixel, frame);
+    float rayPerDepth = length(viewRay);
+    vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
+    vec3 origin = frame.cameraPosition.xyz;
+    vec3 sum = vec3(0.0f);
+    for (int i = 0; i < frame.counts.w; ++i) {
+        LightGlowRay r = lightGlowRay(lights[i], frame, origin, dir, viewDepth * rayPerDepth);
+        if (r.radius <= 0.0f) continue;
+        ivec3 m = lightGlowFroxel(r, origin, dir, frame);
+        vec4 scatteringG = imageLoad(mediaScatteringG, m);
+        vec3 sigmaT = imageLoad(mediaExtinction, m).rgb;
+        vec3 toEnter = sampleIntegrated(pixel, r.enter / rayPerDepth).transmittance;
+        sum += toEnter * scatteringG.rgb * lightGlowPerSigmaS(lights[i], r, origin, dir, sigmaT, scatteringG.a);
+    }
+    return sum;
+}
+
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(px, frame.counts.xy))) return;
@@ -79,6 +98,7 @@ void main() {
         vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
         fog = accumulateDistantFog(fog, dir, froxelFar * rayPerDepth, viewDepth * rayPerDepth);
     }
+    fog.scattering += lightGlow(pixel, viewDepth);
     vec3 color = compositeFog(background, fog);
     imageStore(outputImage, px, vec4(color, 1.0f));
 }
