@@ -64,16 +64,30 @@ Accumulated accumulateDistantFog(Accumulated a, vec3 dir, float s0, float s1) {
     return a;
 }
 
-// The per-pixel part of the point and spot lights' glow (shared/glow.h; core: compositeRow).
+// The per-pixel part of the point and spot lights' glow (shared/glow.h; core: compositeRow), summed
+// in light order. Lavapipe runs every branch and every loop trip of a batch's slowest lane
+// (docs/performance.md): a cheap test counts the lights whose ball this ray meets, and the quadrature
+// runs that many trips (once, masked, where none), not once per light.
 vec3 lightGlow(vec2 pixel, float viewDepth) {
     vec3 viewRay = viewRayFromPixel(pixel, frame);
     float rayPerDepth = length(viewRay);
     vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
     vec3 origin = frame.cameraPosition.xyz;
-    vec3 sum = vec3(0.0f);
+    float rayEnd = viewDepth * rayPerDepth;
+    int hits = 0;
     for (int i = 0; i < frame.counts.w; ++i) {
-        LightGlowRay r = lightGlowRay(lights[i], frame, origin, dir, viewDepth * rayPerDepth);
-        if (r.radius <= 0.0f) continue;
+        if (lightGlowRay(lights[i], frame, origin, dir, rayEnd).radius > 0.0f) ++hits;
+    }
+    vec3 sum = vec3(0.0f);
+    int next = 0;
+    for (int k = 0; k < hits; ++k) {
+        int i = next;
+        LightGlowRay r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
+        while (r.radius <= 0.0f && i + 1 < frame.counts.w) {
+            ++i;
+            r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
+        }
+        next = i + 1;
         ivec3 m = lightGlowFroxel(r, origin, dir, frame);
         vec4 scatteringG = imageLoad(mediaScatteringG, m);
         vec3 sigmaT = imageLoad(mediaExtinction, m).rgb;
