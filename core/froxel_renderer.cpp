@@ -80,7 +80,7 @@ size_t lightRow(const CompiledScene& cs, const ShadowVolume& sv, const LightClus
         for (size_t k = 0; k < count; ++k) {
             const size_t li = all ? k : static_cast<size_t>(cluster[1 + k]);
             const shd::LightData& l = cs.lights[li];
-            const shd::LightSample ls = shd::evalLightNear(l, p, nearest);
+            const shd::LightSample ls = shd::evalLightFroxel(l, p, nearest, v.frame);
             const vec3 inScatter = shd::inScatterPerSigmaS(l, ls, viewDir, g);
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;
@@ -184,6 +184,23 @@ shd::Accumulated distantFogAt(const DistantTable& t, const shd::FrameUniforms& f
     return shd::distantTableBlend(byEntry[0], byEntry[1], k.blend);
 }
 
+// The per-pixel part of the point and spot lights' glow (shaders/shared/glow.h; GPU: composite.comp).
+vec3 lightGlow(const CompiledScene& cs, const FroxelVolumes& v, vec2 pixel, vec3 dir, float rayPerDepth, float viewDepth) {
+    const vec3 origin = vec3(v.frame.cameraPosition);
+    vec3 sum(0.0f);
+    for (const shd::LightData& l : cs.lights) {
+        const shd::LightGlowRay r = shd::lightGlowRay(l, v.frame, origin, dir, viewDepth * rayPerDepth);
+        if (r.radius <= 0.0f) continue;
+        const ivec3 m = shd::lightGlowFroxel(r, origin, dir, v.frame);
+        const size_t i = froxelIndex(v.dims, m.x, m.y, m.z);
+        const vec4 scatteringG = v.mediaScatteringG[i];
+        const vec3 toEnter = sampleIntegrated(v, pixel, r.enter / rayPerDepth).transmittance;
+        sum += toEnter * vec3(scatteringG) *
+               shd::lightGlowPerSigmaS(l, r, origin, dir, vec3(v.mediaExtinction[i]), scatteringG.w);
+    }
+    return sum;
+}
+
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
 void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
                   const LocalShadowMaps& local, const FroxelVolumes& v, const DistantTable& distant, Image& img, int y) {
@@ -214,6 +231,7 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         if (viewDepth > froxelFar && distant.entries > 0) {
             fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
         }
+        fog.scattering += lightGlow(cs, v, pixel, dir, rayPerDepth, viewDepth);
         img.at(x, y) = shd::compositeFog(background, fog);
     }
 }

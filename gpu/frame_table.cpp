@@ -58,9 +58,11 @@ const std::array<PassDecl, 10> kPasses{{
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters},
      {B::distantTable}, true},
-    // Fog over the surfaces, continued past the froxel far from the distant fog table.
+    // Fog over the surfaces, continued past the froxel far from the distant fog table, plus the
+    // lights' glow per pixel (shared/glow.h, which reads the media at the light).
     {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
-     {B::frame, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
+     {B::frame, B::lights, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
+      I::sceneDepth, I::mediaScatteringG, I::mediaExtinction},
      {I::outputImage}, true},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,

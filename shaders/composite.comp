@@ -58,6 +58,39 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
     return distantTableBlend(byEntry[0], byEntry[1], k.blend);
 }
 
+// The per-pixel part of the point and spot lights' glow (shared/glow.h; core: compositeRow), summed
+// in light order. Lavapipe runs every branch and every loop trip of a batch's slowest lane
+// (docs/performance.md): a cheap test counts the lights whose ball this ray meets, and the quadrature
+// runs that many trips (once, masked, where none), not once per light.
+vec3 lightGlow(vec2 pixel, float viewDepth) {
+    vec3 viewRay = viewRayFromPixel(pixel, frame);
+    float rayPerDepth = length(viewRay);
+    vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
+    vec3 origin = frame.cameraPosition.xyz;
+    float rayEnd = viewDepth * rayPerDepth;
+    int hits = 0;
+    for (int i = 0; i < frame.counts.w; ++i) {
+        if (lightGlowRay(lights[i], frame, origin, dir, rayEnd).radius > 0.0f) ++hits;
+    }
+    vec3 sum = vec3(0.0f);
+    int next = 0;
+    for (int k = 0; k < hits; ++k) {
+        int i = next;
+        LightGlowRay r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
+        while (r.radius <= 0.0f && i + 1 < frame.counts.w) {
+            ++i;
+            r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
+        }
+        next = i + 1;
+        ivec3 m = lightGlowFroxel(r, origin, dir, frame);
+        vec4 scatteringG = imageLoad(mediaScatteringG, m);
+        vec3 sigmaT = imageLoad(mediaExtinction, m).rgb;
+        vec3 toEnter = sampleIntegrated(pixel, r.enter / rayPerDepth).transmittance;
+        sum += toEnter * scatteringG.rgb * lightGlowPerSigmaS(lights[i], r, origin, dir, sigmaT, scatteringG.a);
+    }
+    return sum;
+}
+
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(px, frame.counts.xy))) return;
@@ -68,6 +101,7 @@ void main() {
     float froxelFar = frame.froxelRange.y;
     // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; the closed form is compiled out.
     if (SPEC_DISTANT_FOG != 0 && viewDepth > froxelFar) fog = composeAccumulated(fog, distantFogAt(pixel, viewDepth));
+    fog.scattering += lightGlow(pixel, viewDepth);
     vec3 color = compositeFog(background, fog);
     imageStore(outputImage, px, vec4(color, 1.0f));
 }

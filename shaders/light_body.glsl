@@ -108,7 +108,7 @@ void main() {
     int count = all ? frame.counts.w : lightClusters[record];
     for (int k = 0; k < count; ++k) {
         int i = all ? k : lightClusters[record + 1 + k];
-        LightSample ls = evalLightNear(lights[i], p, nearest);
+        LightSample ls = evalLightFroxel(lights[i], p, nearest, frame);
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;

@@ -13,6 +13,7 @@
 #include "app/editor/gizmo_math.h"
 #include "app/editor/view.h"
 #include "io/scene_json.h"
+#include "shaders/shared/brume.h"
 
 namespace fs = std::filesystem;
 using namespace brume;
@@ -220,7 +221,14 @@ TEST(EditorAccumulation, RendersUntilConvergedThenStopsAndRestartsOnChange) {
     scene.temporal.enabled = true;
     scene.temporal.history_weight = 0.9f;
     const int n = convergedFrames(scene);
-    EXPECT_EQ(n, 29);  // 0.9^29 = 0.047 < 5% <= 0.9^28
+    // At rest the renderer averages the first 19 frames evenly (shd::temporalRestWeight: up to
+    // (1 + w) / (1 - w) frames), then blends with w: the first frame's share is 1/19 = 5.3% after
+    // 19 frames and 0.9 / 19 = 4.7% after 20 (the exponential rule alone needed 29: 0.9^29 = 0.047).
+    EXPECT_EQ(n, 20);
+    double share = 1.0;
+    for (int k = 1; k < n; ++k) share *= shd::temporalRestWeight(k, 0.9f);
+    EXPECT_LT(share, 0.05);
+    EXPECT_GE(share / shd::temporalRestWeight(n - 1, 0.9f), 0.05);
     Accumulation acc;
     const ViewKey view{7, Quality::Low, 160, 90};
     int rendered = 0;
@@ -246,8 +254,13 @@ TEST(EditorAccumulation, RendersUntilConvergedThenStopsAndRestartsOnChange) {
     EXPECT_EQ(convergedFrames(scene), 1);
     EXPECT_FALSE(acc.wantsFrame(edited, scene, false));
     scene.temporal.enabled = true;
+    // A long memory no longer churns: the progressive mean reaches 1/21 after 21 frames whatever w
+    // (the exponential rule needed 299 at 0.99, capped at 64).
     scene.temporal.history_weight = 0.99f;
-    EXPECT_EQ(convergedFrames(scene), 64);  // capped, see accumulation.cpp
+    EXPECT_EQ(convergedFrames(scene), 21);
+    // A short one: the mean of 3 frames (cap (1 + 0.5) / (1 - 0.5) = 3), then halving: 1/3 x 0.5^3 < 5%.
+    scene.temporal.history_weight = 0.5f;
+    EXPECT_EQ(convergedFrames(scene), 6);
 }
 
 // A drag (begin ... end) and each frame that changed the document render coarse: low, at the

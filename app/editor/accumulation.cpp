@@ -3,15 +3,25 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/brume.h"
+
 namespace brume::editor {
 
 int convergedFrames(const Scene& scene) {
-    const double w = scene.temporal.enabled ? static_cast<double>(scene.temporal.history_weight) : 0.0;
-    if (w <= 0.0) return 1;
-    // w^n < 0.05; history_weight <= 0.99 (core/settings.h) caps this at 299 frames, 64 keeps a
+    const float w = scene.temporal.enabled ? scene.temporal.history_weight : 0.0f;
+    if (w <= 0.0f) return 1;
+    // The first frame's share of what the view shows, under the renderer's own rule at rest
+    // (shd::temporalRestWeight: a progressive mean of n frames, share 1/n, up to its cap, then the
+    // exponential blend w). history_weight <= 0.99 (core/settings.h) needs 211 frames; 64 keeps a
     // weight-0.99 scene from churning for minutes on a CPU device.
-    const double n = std::ceil(std::log(0.05) / std::log(w));
-    return std::clamp(static_cast<int>(n), 1, 64);
+    constexpr int kMaxFrames = 64;
+    double share = 1.0;
+    int n = 1;
+    while (share >= 0.05 && n < kMaxFrames) {
+        share *= shd::temporalRestWeight(n, w);  // frame n + 1 over a history of n rest frames
+        ++n;
+    }
+    return n;
 }
 
 ViewPlan Interaction::plan(uint64_t revision, bool grouping, Quality preset, int width, int height) {

@@ -1,7 +1,7 @@
 // When the viewport re-renders. While the view rests (same document revision, preset and size) the
 // editor keeps rendering with the GPU history carried on (HistoryMode::Continue), so temporal
 // accumulation converges on screen, and stops once it has: after convergedFrames() frames the
-// first frame's share of the blend is below 5%, and more frames only trade flicker for flicker.
+// first frame's share of the view is below 5%, and more frames only trade flicker for flicker.
 // Any change starts the count again; the renderer itself decides whether its history survives it
 // (temporalSceneKey drops it on media, light, grid or temporal edits; camera moves reproject it).
 #pragma once
@@ -27,8 +27,9 @@ struct ViewKey {
     bool operator==(const ViewKey&) const = default;
 };
 
-// Frames after which an exponential blend with weight `temporal.history_weight` keeps less than
-// 5% of its first frame (1 when temporal is off: every frame would be the same).
+// Frames after which the view keeps less than 5% of its first frame, under the renderer's blend at
+// rest (a progressive mean, then the exponential blend with weight `temporal.history_weight`:
+// shd::temporalRestWeight); 1 when temporal is off: every frame would be the same.
 int convergedFrames(const Scene& scene);
 
 // Scale while interacting, as DCC viewports do. While the user interacts (a begin ... end group is

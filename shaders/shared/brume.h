@@ -9,6 +9,7 @@
 #include "vdb.h"
 #include "density_texture.h"
 #include "lighting.h"
+#include "glow.h"
 #include "integrate.h"
 #include "temporal.h"
 #include "distant.h"

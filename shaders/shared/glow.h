@@ -1,0 +1,137 @@
+// The glow of point and spot lights standing in fog, split between the froxel grid and the pixels.
+//
+// Seen from the camera, a light inside the fog glows with its in-scattering integrated along each
+// pixel's ray: about pi / b for a ray passing at b from the light. The froxel grid samples the
+// inverse square once per froxel and the composite interpolates between column centres a tile
+// apart, so near the light the grid can neither hold 1/r^2 nor the ~1/b peak on screen
+// (docs/quality.md, "Point lights in fog": 2.9% off the reference at high, the error across tiles).
+//
+// So the inverse square is split at a glow radius R (a few froxels, lightGlowRadius) with the
+// window h(u) = (1 - u^2)^2, u = r / R (h = 0 beyond R):
+//     1/r^2 = (1 - h) / r^2        the froxel part: (2 - u^2) / R^2 inside R, smooth and finite
+//           +      h  / r^2        the pixel part: non-zero only inside the ball of radius R
+// The light pass evaluates the first (evalLightFroxel); the composite adds the second per pixel
+// along the pixel's own ray (lightGlowPerSigmaS), with the medium of the froxel at the ray's
+// closest point to the light taken as uniform over the ball. With t = b tan(phi) along the ray
+// (b the closest distance), dt / r^2 = dphi / b, so the pixel part is a smooth integral over phi,
+// done with 6-point Gauss-Legendre: exact as b -> 0, where the grid was worst.
+//
+// The pixel part leaves out what is small over a ball of a few froxels: the fog's shadow toward the
+// light is exp(-sigma_t r) in the ball's uniform medium, and the point/spot shadow maps are not read.
+#ifndef BRUME_SHARED_GLOW_H
+#define BRUME_SHARED_GLOW_H
+
+#include "froxel.h"
+#include "lighting.h"
+
+BRUME_NAMESPACE_BEGIN
+
+// Glow radius R in froxel radii at the light's depth. Larger: a smoother froxel part, more pixels
+// doing the per-pixel part, the uniform-medium assumption over a larger ball. Measured against the
+// reference at 320x180 (docs/quality.md): 2 and 3 gain alike at high (lanterns 0.59% / 0.47%), but
+// at low 3 spreads the ball over the default scene's box edge (1.70% -> 3.63%).
+BRUME_CONST float LIGHT_GLOW_FROXELS = 2.0f;
+
+// R for light l in frame f [m]; 0 when the light has no glow (directional, fog_scale 0, not between
+// the froxel near and far), and then the froxel part keeps the whole inverse square.
+// The froxel radius of froxel.h froxelRadius, at the light's own view depth rather than per slice.
+BRUME_FUNC float lightGlowRadius(LightData l, FrameUniforms f) {
+    if (l.kind.x == LIGHT_DIRECTIONAL || !(l.fogScale > 0.0f)) return 0.0f;
+    float z = -(f.viewFromWorld * vec4(vec3(l.positionRange), 1.0f)).z;
+    float zNear = f.froxelRange.x;
+    float zFar = f.froxelRange.y;
+    if (!(z > zNear) || !(z < zFar)) return 0.0f;
+    float k = f.froxelRange.z;
+    float u = (z - zNear) / (zFar - zNear);
+    float t = pow(u, 1.0f / k);
+    // Slice thickness dz/ds at z: (far - near) k t^(k-1) / slices.
+    float thickness = (zFar - zNear) * k * u / (t * float(f.froxelDims.z));
+    float tile = float(f.froxelDims.w);
+    float w = 2.0f * f.projection.x * z * tile / float(f.counts.x);
+    float h = 2.0f * f.projection.y * z * tile / float(f.counts.y);
+    return LIGHT_GLOW_FROXELS * 0.5f * sqrt(w * w + h * h + thickness * thickness);
+}
+
+// The light pass's sample of light l at p: the froxel part (1 - h) / r^2 of a light with a glow,
+// else the inverse square evaluated no closer than `nearest` (lighting.h FROXEL_LIGHT_CLAMP).
+BRUME_FUNC LightSample evalLightFroxel(LightData l, vec3 p, float nearest, FrameUniforms f) {
+    float glow = lightGlowRadius(l, f);
+    if (glow <= 0.0f) return evalLightNear(l, p, nearest);
+    LightSample s = evalLightNear(l, p, LIGHT_MIN_DISTANCE);
+    float u2 = (s.distance * s.distance) / (glow * glow);
+    if (u2 < 1.0f) s.irradiance *= u2 * (2.0f - u2);  // 1 - h
+    return s;
+}
+
+// Where a camera ray meets a light's glow ball.
+struct LightGlowRay {
+    float radius;   // R [m]; 0 = the ray does not meet the ball (nothing to add)
+    float closest;  // ray distance of the closest point to the light [m]
+    float b;        // distance of the closest point from the light [m]
+    float enter;    // ray distance where the ray enters the ball (or starts, inside it) [m]
+    vec2 phi;       // the ray's part inside the ball and in front of its end, as angles atan(t / b)
+};
+
+// The ray from `origin` along the unit `dir`, ending at ray distance `rayEnd` (a surface or the far).
+BRUME_FUNC LightGlowRay lightGlowRay(LightData l, FrameUniforms f, vec3 origin, vec3 dir, float rayEnd) {
+    LightGlowRay g;
+    g.radius = 0.0f;
+    g.closest = 0.0f;
+    g.b = 1.0f;
+    g.enter = 0.0f;
+    g.phi = vec2(0.0f);
+    float radius = lightGlowRadius(l, f);
+    if (radius <= 0.0f) return g;
+    vec3 toLight = vec3(l.positionRange) - origin;
+    float tc = dot(toLight, dir);
+    float b = max(length(toLight - dir * tc), LIGHT_MIN_DISTANCE);
+    if (b >= radius) return g;
+    float c = sqrt(radius * radius - b * b);
+    float t0 = max(-c, -tc);
+    float t1 = min(c, rayEnd - tc);
+    if (!(t1 > t0)) return g;
+    g.radius = radius;
+    g.closest = tc;
+    g.b = b;
+    g.enter = tc + t0;
+    g.phi = vec2(atan(t0 / b), atan(t1 / b));
+    return g;
+}
+
+// The froxel whose medium stands for the ball's: the one holding the ray's closest point to the
+// light, clamped into the grid.
+BRUME_FUNC ivec3 lightGlowFroxel(LightGlowRay r, vec3 origin, vec3 dir, FrameUniforms f) {
+    vec4 c = froxelCoordFromWorld(origin + dir * r.closest, f);
+    ivec3 i = ivec3(floor(vec3(c)));
+    return clamp(i, ivec3(0), ivec3(f.froxelDims) - ivec3(1));
+}
+
+// The pixel part along ray r, per unit sigma_s, as seen from where the ray enters the ball (multiply
+// by sigma_s and the transmittance from the camera to r.enter). sigmaT and g: the ball's medium.
+// Every exponent is <= 0, so an opaque medium gives 0, never an overflow.
+BRUME_FUNC vec3 lightGlowPerSigmaS(LightData l, LightGlowRay r, vec3 origin, vec3 dir, vec3 sigmaT, float g) {
+    vec3 sum = vec3(0.0f);
+    if (r.radius <= 0.0f) return sum;
+    // 6-point Gauss-Legendre on [phi0, phi1], in symmetric pairs.
+    float nodes[3] = {0.2386191861f, 0.6612093865f, 0.9324695142f};
+    float weights[3] = {0.4679139346f, 0.3607615730f, 0.1713244924f};
+    float mid = 0.5f * (r.phi.x + r.phi.y);
+    float halfWidth = 0.5f * (r.phi.y - r.phi.x);
+    for (int k = 0; k < 6; ++k) {
+        float x = (k % 2 == 0 ? 1.0f : -1.0f) * nodes[k / 2];
+        float t = r.b * tan(mid + halfWidth * x);
+        LightSample s = evalLightNear(l, origin + dir * (r.closest + t), LIGHT_MIN_DISTANCE);
+        float rr = max(s.distance, LIGHT_MIN_DISTANCE);
+        float u2 = (s.distance * s.distance) / (r.radius * r.radius);
+        float h = max(1.0f - u2, 0.0f);
+        // dt / r^2 = dphi / b: the irradiance's 1/r^2 times r^2 / b.
+        float w = weights[k / 2] * halfWidth * h * h * rr * rr / r.b;
+        float depth = max(r.closest + t - r.enter, 0.0f);  // inside the ball, before this point
+        sum += inScatterPerSigmaS(l, s, dir, g) * w * exp(-sigmaT * (depth + s.distance));
+    }
+    return sum;
+}
+
+BRUME_NAMESPACE_END
+
+#endif
