@@ -21,6 +21,15 @@ std::string recoveryPathFor(const std::string& scenePath) {
 }
 
 Result<void> Autosave::tick(const Document& doc, double now) {
+    if (!docPathKnown_ || doc.path() != docPath_) {
+        const bool moved = docPathKnown_;
+        docPath_ = doc.path();
+        docPathKnown_ = true;
+        if (const std::string want = recoveryPathFor(docPath_); moved && want != path_) {
+            retarget(want);  // Save As (New and Open have retargeted already)
+            discard();
+        }
+    }
     if (!doc.dirty()) {
         if (fileExists_) discard();
         return {};
