@@ -300,3 +300,23 @@ TEST(EditorFiles, UndoPastSaveAsIntoAnotherFolderKeepsVdbPathsPointingAtTheSameF
     EXPECT_TRUE(saved.value().warnings.empty()) << saved.value().warnings.front();
     fs::remove_all(dir);
 }
+
+// A kill -9 during a save leaves the atomic write's temporary (io/atomic_file.h) beside the scene;
+// the next session removes those of processes that are gone, never those of a running one.
+TEST(EditorFiles, TemporariesLeftByAKilledSaveAreRemovedByTheNextSession) {
+    const fs::path dir = tempDir("stale_tmp");
+    Document doc = defaultAt(dir / "scene.json");
+    const fs::path dead = dir / ".scene.json.2147483600.0.0.tmp";  // above any pid Linux hands out
+    const fs::path deadRecovery = dir / ".scene.json.recovery.json.2147483600.3.0.tmp";
+    const fs::path alive = dir / (".scene.json." + std::to_string(::getpid()) + ".0.0.tmp");
+    const fs::path other = dir / ".other.json.2147483600.0.0.tmp";
+    for (const fs::path& p : {dead, deadRecovery, alive, other}) std::ofstream(p) << "{ half a sce";
+    Autosave autosave(recoveryPathFor(doc.path()), 1.0);
+    ASSERT_TRUE(autosave.tick(doc, 0.0).ok());
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_FALSE(fs::exists(deadRecovery));
+    EXPECT_TRUE(fs::exists(alive));  // a save under way in a running process
+    EXPECT_TRUE(fs::exists(other));  // another file's
+    EXPECT_TRUE(loadSceneFile(doc.path()).ok());
+    fs::remove_all(dir);
+}
