@@ -172,7 +172,10 @@ Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty
     if (!rb) return rb.error();
     res.outputReadback = std::move(rb.value());
     res.size = size;
-    BRUME_TRY(geometry.attach(*device, res));
+    if (Result<void> a = geometry.attach(*device, res); !a) {
+        res.size = glm::ivec2(0);  // attach again next time
+        return a.error();
+    }
     dirty = true;
     return {};
 }
@@ -194,7 +197,8 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
                                          size_t vertexBytes, int shadowReduction, size_t sunShadowBytes,
                                          size_t localShadowBytes) {
-    bool dirty = false;
+    bool dirty = descriptorsStale;
+    descriptorsStale = true;  // until the descriptors below are written
     BRUME_TRY(ensureBuffer(BufferId::frame, sizeof(shd::FrameUniforms), dirty));
     BRUME_TRY(ensureBuffer(BufferId::previousFrame, sizeof(shd::FrameUniforms), dirty));
     BRUME_TRY(ensureBuffer(BufferId::counters, sizeof(shd::FroxelCounters), dirty));
@@ -233,6 +237,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
+    descriptorsStale = false;
     return {};
 }
 
@@ -404,7 +409,8 @@ Result<double> GpuRenderer::State::submitAndWait() {
     const VkFence f = fence.get();
     BRUME_VK(vkResetFences(device->vk(), 1, &f), "reset a fence");
     const auto start = std::chrono::steady_clock::now();
-    BRUME_VK(vkQueueSubmit(device->queue(), 1, &submit, f), "submit the frame");
+    const VkResult injected = injectedFault(FaultSite::Submit);  // tests only (vk_check.h)
+    BRUME_VK(injected != VK_SUCCESS ? injected : vkQueueSubmit(device->queue(), 1, &submit, f), "submit the frame");
     BRUME_VK(vkWaitForFences(device->vk(), 1, &f, VK_TRUE, UINT64_MAX), "wait for the frame to finish");
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -28,6 +28,9 @@ struct GpuRenderer::State {
     SpecKey spec;                     // this scene's specialization constants (passes marked specialized)
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
+    // A prepare that failed part-way (out of GPU memory) may have replaced resources without
+    // rewriting the descriptors: the next prepare rewrites them all.
+    bool descriptorsStale = false;
     SunShadowCache sunShadow;     // the host-built sun shadow map, kept while its inputs do not change
     LocalShadowCache localShadows;  // the host-built point/spot maps, each kept while its inputs do not change
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)

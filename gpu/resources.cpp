@@ -17,7 +17,8 @@ Result<MemoryOwner> allocate(const Device& device, VkMemoryRequirements req, Mem
     info.allocationSize = req.size;
     info.memoryTypeIndex = type.value();
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    BRUME_VK(vkAllocateMemory(device.vk(), &info, nullptr, &memory),
+    const VkResult injected = injectedFault(FaultSite::Allocate);  // tests only (vk_check.h)
+    BRUME_VK(injected != VK_SUCCESS ? injected : vkAllocateMemory(device.vk(), &info, nullptr, &memory),
              "allocate " + std::to_string(req.size >> 20) + " MiB for " + name);
     device.name(memory, VK_OBJECT_TYPE_DEVICE_MEMORY, name + " memory");
     return MemoryOwner(device.vk(), memory);

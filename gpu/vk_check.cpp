@@ -1,5 +1,10 @@
 #include "vk_check.h"
 
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+
 namespace brume::gpu {
 
 const char* describeVkResult(VkResult r) {
@@ -29,6 +34,52 @@ const char* describeVkResult(VkResult r) {
 
 Error vkError(const std::string& action, VkResult r) {
     return Error{"Vulkan could not " + action + ": " + describeVkResult(r) + "."};
+}
+
+bool isGpuFault(const Error& e) {
+    if (e.message.rfind("Vulkan could not ", 0) != 0) return false;
+    for (VkResult r : {VK_ERROR_OUT_OF_DEVICE_MEMORY, VK_ERROR_OUT_OF_HOST_MEMORY, VK_ERROR_DEVICE_LOST})
+        if (e.message.find(describeVkResult(r)) != std::string::npos) return true;
+    return false;
+}
+
+namespace {
+
+struct Injection {
+    std::atomic<uint64_t> failAt{0};  // 0: never
+    std::atomic<uint64_t> calls{0};
+};
+Injection g_injections[2];
+std::once_flag g_fromEnvironment;
+
+// BRUME_GPU_FAULT=oom@N | lost@N, read once.
+void readEnvironment() {
+    const char* v = std::getenv("BRUME_GPU_FAULT");
+    if (!v) return;
+    const char* at = std::strchr(v, '@');
+    if (!at) return;
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(at + 1, &end, 10);
+    if (end == at + 1 || *end != '\0') return;
+    const std::string kind(v, at);
+    if (kind == "oom") g_injections[int(FaultSite::Allocate)].failAt = n;
+    if (kind == "lost") g_injections[int(FaultSite::Submit)].failAt = n;
+}
+
+}  // namespace
+
+void setFaultInjection(FaultSite site, uint64_t n) {
+    std::call_once(g_fromEnvironment, readEnvironment);
+    for (Injection& i : g_injections) i.calls = 0;
+    g_injections[int(site)].failAt = n;
+}
+
+VkResult injectedFault(FaultSite site) {
+    std::call_once(g_fromEnvironment, readEnvironment);
+    Injection& i = g_injections[int(site)];
+    const uint64_t call = ++i.calls;
+    if (i.failAt == 0 || call != i.failAt) return VK_SUCCESS;
+    return site == FaultSite::Allocate ? VK_ERROR_OUT_OF_DEVICE_MEMORY : VK_ERROR_DEVICE_LOST;
 }
 
 }  // namespace brume::gpu

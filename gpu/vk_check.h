@@ -1,6 +1,7 @@
 // VkResult -> Error with a sentence a user can act on; raw VkResult codes never reach users.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -23,6 +24,18 @@ T vkStruct(VkStructureType type) {
 
 // "Vulkan could not <action>: <description>."
 Error vkError(const std::string& action, VkResult r);
+// Whether `e` came from vkError for out-of-memory or device loss: a lower quality may still render.
+bool isGpuFault(const Error& e);
+
+// Fault injection for tests (docs/reliability.md, "GPU faults"). The environment variable
+// BRUME_GPU_FAULT=oom@N makes the Nth GPU memory allocation of the process fail with
+// VK_ERROR_OUT_OF_DEVICE_MEMORY, and lost@N the Nth frame submission fail with VK_ERROR_DEVICE_LOST
+// (the frame is not submitted); N counts from 1, and a bad value is ignored. setFaultInjection does
+// the same in-process (n = 0: none) and restarts the counts.
+enum class FaultSite { Allocate, Submit };
+void setFaultInjection(FaultSite site, uint64_t n);
+// VK_SUCCESS, or the injected failure when this call is the chosen one (counts every call).
+VkResult injectedFault(FaultSite site);
 
 }  // namespace brume::gpu
 

@@ -3,10 +3,12 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 namespace brume {
@@ -98,6 +100,26 @@ Result<void> writeTextFileAtomic(const std::string& path, std::string_view text)
         if (::close(fd) != 0) return osError(path, "cannot write", errno);
         return {};
     });
+}
+
+int removeStaleTemporaries(const std::string& path) {
+    // tmpPathFor's names: ".NAME.PID.COUNTER.ATTEMPT.tmp".
+    const std::filesystem::path p(path);
+    const std::string prefix = "." + p.filename().string() + ".";
+    const std::filesystem::path folder = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+    std::error_code ec;
+    int removed = 0;
+    for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.size() <= prefix.size() + 4 || name.rfind(prefix, 0) != 0 || !name.ends_with(".tmp")) continue;
+        const std::string rest = name.substr(prefix.size());
+        char* endp = nullptr;
+        const long pid = std::strtol(rest.c_str(), &endp, 10);
+        if (endp == rest.c_str() || *endp != '.' || pid <= 0) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // running (or not ours to tell)
+        if (::unlink(it->path().c_str()) == 0) ++removed;
+    }
+    return removed;
 }
 
 }  // namespace brume

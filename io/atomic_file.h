@@ -19,4 +19,8 @@ Result<void> writeFileAtomic(const std::string& path,
 
 Result<void> writeTextFileAtomic(const std::string& path, std::string_view text);
 
+// Removes the temporaries that writes of `path` by processes no longer running left behind (a
+// kill -9 during a save); those of running processes are left alone. Returns how many it removed.
+int removeStaleTemporaries(const std::string& path);
+
 }  // namespace brume

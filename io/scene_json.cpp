@@ -82,8 +82,22 @@ std::string describe(const json& v) {
     return s.size() > 40 ? s.substr(0, 37) + "..." : s;
 }
 
+// Control characters in a key are written escaped (cam\nt), so an error naming it stays one
+// line (found by tests/fuzz/fuzz_scene_json and fuzz_preset_json: a key holding a newline).
 std::string child(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : path + "." + std::string(key);
+    std::string k;
+    for (const char c : key) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '\n') k += "\\n";
+        else if (c == '\t') k += "\\t";
+        else if (u < 0x20 || u == 0x7f) {
+            static const char* hex = "0123456789abcdef";
+            k += "\\x";
+            k += hex[u >> 4];
+            k += hex[u & 15];
+        } else k += c;
+    }
+    return path.empty() ? k : path + "." + k;
 }
 
 std::string indexed(const std::string& path, size_t i) { return path + "[" + std::to_string(i) + "]"; }

@@ -51,14 +51,23 @@ brume_build() {
   cmake --build "$BRUME_BUILD" -j"$(nproc)"
 }
 
-# ASan + UBSan (BRUME_SANITIZE), without the GPU renderer, the editor window and the benchmarks:
-# what scripts/test --sanitize runs. ccache is used when present (CI machines keep its cache).
+# The instrumented build in build-sanitize/: clang with ASan + UBSan and libFuzzer's coverage hooks
+# (BRUME_FUZZ), without the GPU renderer, the editor window and the benchmarks. One build serves
+# scripts/test --sanitize (the tests, where the hooks do nothing) and scripts/fuzz (the libFuzzer
+# targets), so CI compiles the instrumented libraries once. -O1 (ASan's advice) and -g1 (line
+# tables for the reports) keep the OpenVDB units' compile time down. ccache is used when present.
+# Arguments: the targets to build (none: all).
 brume_build_sanitized() {
   local launcher=()
   if command -v ccache >/dev/null; then
     launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   fi
-  cmake -S "$BRUME_ROOT" -B "$BRUME_SANITIZE_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBRUME_SANITIZE=ON \
-    -DBRUME_BUILD_GPU=OFF -DBRUME_BUILD_BENCH=OFF "${launcher[@]}"
-  cmake --build "$BRUME_SANITIZE_BUILD" -j"$(nproc)"
+  CC=clang CXX=clang++ cmake -S "$BRUME_ROOT" -B "$BRUME_SANITIZE_BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+    -DBRUME_FUZZ=ON -DBRUME_BUILD_GPU=OFF -DBRUME_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
+  local targets=()
+  if [[ $# -gt 0 ]]; then
+    targets=(--target "$@")
+  fi
+  cmake --build "$BRUME_SANITIZE_BUILD" -j"${BRUME_JOBS:-$(nproc)}" "${targets[@]}"
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/editor/autosave.h"
 #include "app/editor/files.h"
 #include "app/editor/view.h"
 #include "io/scene_json.h"
@@ -271,5 +272,84 @@ TEST(EditorFiles, ImportMeshMakesAHullAndEditsRemakeItsGrid) {
     ASSERT_TRUE(run(files, doc, "open " + (dir / "scene.json").string()).ok());
     EXPECT_TRUE(doc.scene().volumes[n].density && !doc.scene().volumes[n].density->empty());
     EXPECT_TRUE(files.takeMessages().empty());
+    fs::remove_all(dir);
+}
+
+// Found by the crash-safety review (issue 17): Save As moved the document but not its autosave, so
+// edits after it went on being autosaved beside the old file, where a restart on the new file
+// never looks. The autosave follows the path; a stale recovery file at the new place is removed.
+TEST(EditorFiles, AutosaveFollowsSaveAsIntoAnotherFolder) {
+    const fs::path dir = tempDir("autosave_saveas");
+    fs::create_directories(dir / "a");
+    fs::create_directories(dir / "b");
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "a" / "scene.json");
+    Autosave autosave(recoveryPathFor(doc.path()), 1.0);
+    ASSERT_TRUE(autosave.tick(doc, 0.0).ok());
+    std::ofstream(dir / "b" / "moved.json.recovery.json") << "{ a stale recovery file }";
+    ASSERT_TRUE(run(files, doc, "set ambient 0.1 0.2 0.3").ok());
+    ASSERT_TRUE(autosave.tick(doc, 10.0).ok());
+    EXPECT_TRUE(fs::exists(dir / "a" / "scene.json.recovery.json"));
+    ASSERT_TRUE(run(files, doc, "save " + (dir / "b" / "moved.json").string()).ok());
+    ASSERT_TRUE(autosave.tick(doc, 11.0).ok());
+    EXPECT_FALSE(fs::exists(dir / "a" / "scene.json.recovery.json"));
+    EXPECT_FALSE(fs::exists(dir / "b" / "moved.json.recovery.json"));  // the stale one
+    ASSERT_TRUE(run(files, doc, "set ambient 0.4 0.5 0.6").ok());
+    ASSERT_TRUE(autosave.tick(doc, 20.0).ok());
+    EXPECT_EQ(autosave.path(), (dir / "b" / "moved.json.recovery.json").string());
+    Result<Scene> recovered = loadSceneFile((dir / "b" / "moved.json.recovery.json").string());
+    ASSERT_TRUE(recovered.ok()) << recovered.error().message;
+    EXPECT_FLOAT_EQ(recovered.value().ambient.x, 0.4f);
+    EXPECT_FALSE(fs::exists(dir / "a" / "scene.json.recovery.json"));
+    fs::remove_all(dir);
+}
+
+// The project's notes (issue 17): undoing past a Save As into another folder restored the VDB
+// path relative to the old folder, and the next save wrote a path naming a file that is not there.
+TEST(EditorFiles, UndoPastSaveAsIntoAnotherFolderKeepsVdbPathsPointingAtTheSameFile) {
+    const fs::path dir = tempDir("undo_saveas");
+    fs::create_directories(dir / "a" / "vdb");
+    fs::create_directories(dir / "b");
+    writeCube(dir / "a" / "vdb" / "cube.vdb");
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "a" / "scene.json");
+    ASSERT_TRUE(run(files, doc, "import vdb " + (dir / "a" / "vdb" / "cube.vdb").string()).ok());
+    const size_t n = doc.scene().volumes.size() - 1;
+    ASSERT_EQ(doc.scene().volumes[n].file, "vdb/cube.vdb");
+    ASSERT_TRUE(run(files, doc, "save " + (dir / "b" / "moved.json").string()).ok());
+    const std::string absolute = (dir / "a" / "vdb" / "cube.vdb").string();
+    EXPECT_EQ(doc.scene().volumes[n].file, absolute);
+    ASSERT_TRUE(run(files, doc, "undo").ok());  // the save's rebase: back to the snapshot relative to a/
+    EXPECT_EQ(doc.scene().volumes[n].file, absolute);
+    ASSERT_TRUE(run(files, doc, "undo").ok());  // before the import
+    ASSERT_EQ(doc.scene().volumes.size(), n);
+    ASSERT_TRUE(run(files, doc, "redo").ok());
+    ASSERT_EQ(doc.scene().volumes.size(), n + 1);
+    EXPECT_EQ(doc.scene().volumes[n].file, absolute);
+    ASSERT_TRUE(run(files, doc, "save").ok());
+    Result<OpenedScene> saved = openSceneFile((dir / "b" / "moved.json").string());
+    ASSERT_TRUE(saved.ok()) << saved.error().message;
+    EXPECT_EQ(saved.value().scene.volumes[n].file, absolute);
+    EXPECT_TRUE(saved.value().warnings.empty()) << saved.value().warnings.front();
+    fs::remove_all(dir);
+}
+
+// A kill -9 during a save leaves the atomic write's temporary (io/atomic_file.h) beside the scene;
+// the next session removes those of processes that are gone, never those of a running one.
+TEST(EditorFiles, TemporariesLeftByAKilledSaveAreRemovedByTheNextSession) {
+    const fs::path dir = tempDir("stale_tmp");
+    Document doc = defaultAt(dir / "scene.json");
+    const fs::path dead = dir / ".scene.json.2147483600.0.0.tmp";  // above any pid Linux hands out
+    const fs::path deadRecovery = dir / ".scene.json.recovery.json.2147483600.3.0.tmp";
+    const fs::path alive = dir / (".scene.json." + std::to_string(::getpid()) + ".0.0.tmp");
+    const fs::path other = dir / ".other.json.2147483600.0.0.tmp";
+    for (const fs::path& p : {dead, deadRecovery, alive, other}) std::ofstream(p) << "{ half a sce";
+    Autosave autosave(recoveryPathFor(doc.path()), 1.0);
+    ASSERT_TRUE(autosave.tick(doc, 0.0).ok());
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_FALSE(fs::exists(deadRecovery));
+    EXPECT_TRUE(fs::exists(alive));  // a save under way in a running process
+    EXPECT_TRUE(fs::exists(other));  // another file's
+    EXPECT_TRUE(loadSceneFile(doc.path()).ok());
     fs::remove_all(dir);
 }

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "io/atomic_file.h"
+#include "io/preset.h"
 #include "io/scene_json.h"
 
 #include <nlohmann/json.hpp>
@@ -654,3 +655,19 @@ TEST(SceneJsonKeyframes, BadKeysNameTheirPath) {
 
 }  // namespace
 }  // namespace brume
+
+// Found by tests/fuzz/fuzz_scene_json and fuzz_preset_json (inputs in tests/fuzz/corpus/*/
+// key_with_newline.json): an unknown key holding a newline was echoed raw, so the error was two
+// lines. Control characters in keys are now written escaped.
+TEST(SceneJson, AnUnknownKeyWithControlCharactersIsNamedOnOneLine) {
+    brume::Result<brume::Scene> r = brume::parseScene("{\"brume_scene\": 1, \"cam\\nt\\u0001\": 1}", "k.json");
+    ASSERT_FALSE(r.ok());
+    const std::string& m = r.error().message;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    EXPECT_EQ(m.rfind("k.json: cam\\nt\\x01: unknown key", 0), 0u) << m;
+    brume::Result<brume::Preset> p = brume::parsePreset("{\"brume_preset\": 1, \"name\": \"n\", \"volumes\": [{\"type\": \"box\", \"a\\nb\": 1}]}",
+                                   "p.json", "/tmp");
+    ASSERT_FALSE(p.ok());
+    EXPECT_EQ(p.error().message.find('\n'), std::string::npos) << p.error().message;
+    EXPECT_NE(p.error().message.find("a\\nb"), std::string::npos) << p.error().message;
+}

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "io/atomic_file.h"
 #include "io/scene_json.h"
 
 namespace brume::editor {
@@ -21,6 +22,18 @@ std::string recoveryPathFor(const std::string& scenePath) {
 }
 
 Result<void> Autosave::tick(const Document& doc, double now) {
+    if (!docPathKnown_ || doc.path() != docPath_) {
+        const bool moved = docPathKnown_;
+        docPath_ = doc.path();
+        docPathKnown_ = true;
+        // A kill -9 during an earlier save or autosave left a temporary beside the file.
+        if (!docPath_.empty()) removeStaleTemporaries(docPath_);
+        if (!moved) removeStaleTemporaries(path_);
+        if (const std::string want = recoveryPathFor(docPath_); moved && want != path_) {
+            retarget(want);  // Save As (New and Open have retargeted already)
+            discard();
+        }
+    }
     if (!doc.dirty()) {
         if (fileExists_) discard();
         return {};
@@ -45,6 +58,7 @@ void Autosave::discard() {
 void Autosave::retarget(std::string recoveryPath) {
     discard();
     path_ = std::move(recoveryPath);
+    removeStaleTemporaries(path_);
     lastWrite_ = -1.0e30;
 }
 

@@ -21,6 +21,10 @@ public:
 
     // Call every frame with a monotonic clock in seconds. Writes when the document is dirty, has
     // changed since the last autosave and the interval has passed; removes the file once it is clean.
+    // The file follows the document's path: after a Save As it moves beside the new file (a
+    // recovery file already there predates that save and is removed), so a restart on the file
+    // being edited finds it. New and Open call retarget themselves (a recovery file beside the
+    // opened scene is kept: the editor offers it).
     Result<void> tick(const Document& doc, double nowSeconds);
     // Removes the recovery file (clean exit).
     void discard();
@@ -31,6 +35,8 @@ public:
 
 private:
     std::string path_;
+    std::string docPath_;  // the document path path_ was last checked against
+    bool docPathKnown_ = false;
     double interval_;
     double lastWrite_ = -1.0e30;
     uint64_t writtenRevision_ = ~uint64_t(0);

@@ -234,6 +234,7 @@ void Document::undo() {
     redo_.push_back(std::move(scene_));
     scene_ = std::move(undo_.back());
     undo_.pop_back();
+    followFolder();
     ++revision_;
 }
 
@@ -243,7 +244,19 @@ void Document::redo() {
     undo_.push_back(std::move(scene_));
     scene_ = std::move(redo_.back());
     redo_.pop_back();
+    followFolder();
     ++revision_;
+}
+
+// A snapshot from before a Save As into another folder holds VDB paths relative to the old folder:
+// restored, they are rebased to the folder the document now lives in (else a save after undoing
+// past the Save As would write paths that name other files).
+void Document::followFolder() {
+    if (path_.empty()) return;
+    std::error_code ec;
+    const std::string dir = std::filesystem::absolute(path_, ec).lexically_normal().parent_path().string();
+    if (ec || dir == scene_.baseDir) return;
+    scene_ = rebasedTo(std::move(scene_), dir);
 }
 
 Result<void> Document::add(const std::vector<std::string>& a) {

@@ -80,6 +80,7 @@ private:
     void commit(Scene next);
     void undo();
     void redo();
+    void followFolder();
 
     Scene scene_;
     Scene saved_;

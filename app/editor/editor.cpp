@@ -10,6 +10,7 @@
 #include "core/debug_view.h"
 #include "core/quality.h"
 #include "preset_shelf.h"
+#include "gpu/vk_check.h"
 #include "tonemap.h"
 #include "view.h"
 
@@ -248,6 +249,11 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     Result<gpu::GpuRender> out = renderer.renderOnDevice(shown, request);
     accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
     hasImage_ = out.ok();
+    if (!out && gpu::isGpuFault(out.error()) && quality_ != Quality::Low) {
+        // Out of GPU memory or device lost (gpu/vk_check.h): the next frame tries the preset below.
+        quality_ = static_cast<Quality>(static_cast<int>(quality_) - 1);
+        return Error{out.error().message + " The viewport falls back to quality " + toString(quality_) + "."};
+    }
     if (!out) return out.error();
     viewSize_ = glm::ivec2(width, height);
     coarse_ = plan.coarse;

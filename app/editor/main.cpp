@@ -180,6 +180,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
     FrameStats stats;
     UiState ui;
     offerRecovery(editor, ui, o, seconds());
+    std::string offeredFor = editor.autosave().path();
     // Scripted and screenshot runs get a frame-count clock that starts paused (scene_time.h).
     const bool fixedClock = !o.script.empty() || !o.screenshot.empty() || o.frames > 0;
     if (fixedClock) editor.sceneTime().play(false);
@@ -212,13 +213,22 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             ui.closeConfirmed = true;
         }
         ImGui::Render();
+        // New or Open moved the autosave: a recovery file already there is a crashed session's.
+        if (editor.autosave().path() != offeredFor) {
+            offeredFor = editor.autosave().path();
+            offerRecovery(editor, ui, o, now);
+        }
         if (Result<void> r = editor.autosave().tick(editor.doc(), now); !r) editor.notify(r.error().message, now);
+        offeredFor = editor.autosave().path();  // where a Save As moved it: our own file
         int w = 0, h = 0;
         glfwGetFramebufferSize(presenter.window(), &w, &h);
         const uint64_t rendersBefore = editor.renders();
         if (w > 0 && h > 0) {
             if (Result<void> r = presenter.waitForFrame(); !r) return fail(r.error().message, 1);
-            if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) editor.notify(r.error().message, now);
+            if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) {
+                editor.notify(r.error().message, now);
+                std::fprintf(stderr, "%s\n", r.error().message.c_str());  // also in logs and tests
+            }
         }
         ++frame;
         const bool last = o.frames > 0 && frame >= o.frames;
