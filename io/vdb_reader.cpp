@@ -387,6 +387,25 @@ Result<DensityGridPtr> mapGrid(const std::string& file, int fd) {
     return out;
 }
 
+// The grid a "load" or "mesh" run of the reader left in out, in the asked encoding, with the name and
+// warnings of its reply.
+Result<VdbLoad> finishLoad(const std::string& path, const json& reply, const MemoryFiles& out,
+                           const VdbImportOptions& options) {
+    Result<DensityGridPtr> grid = mapGrid(path, out.grid());
+    if (!grid) return grid.error();
+    grid = encodeDensityGrid(grid.value(), options.encoding, path);
+    if (!grid) return grid.error();
+    VdbLoad load;
+    load.grid = grid.value();
+    try {
+        load.gridName = reply.at("grid_name").get<std::string>();
+        load.warnings = reply.at("warnings").get<std::vector<std::string>>();
+    } catch (const std::exception&) {
+        return Error{crashed(path)};
+    }
+    return load;
+}
+
 }  // namespace
 
 Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& options) {
@@ -395,19 +414,7 @@ Result<VdbLoad> loadVdbDensity(const std::string& path, const VdbImportOptions& 
     Result<json> r = runReader(path, {"load", path, options.grid, std::to_string(options.memoryLimitBytes),
                                       kToDescriptors}, out, options);
     if (!r) return r.error();
-    Result<DensityGridPtr> grid = mapGrid(path, out.grid());
-    if (!grid) return grid.error();
-    grid = encodeDensityGrid(grid.value(), options.encoding, path);
-    if (!grid) return grid.error();
-    VdbLoad load;
-    load.grid = grid.value();
-    try {
-        load.gridName = r.value().at("grid_name").get<std::string>();
-        load.warnings = r.value().at("warnings").get<std::vector<std::string>>();
-    } catch (const std::exception&) {
-        return Error{crashed(path)};
-    }
-    return load;
+    return finishLoad(path, r.value(), out, options);
 }
 
 Result<VdbLoad> loadMeshDensity(const std::string& path, float edgeFadeM, const VdbImportOptions& options) {
@@ -418,19 +425,7 @@ Result<VdbLoad> loadMeshDensity(const std::string& path, float edgeFadeM, const 
     Result<json> r = runReader(path, {"mesh", path, fade, std::to_string(options.memoryLimitBytes), kToDescriptors},
                                out, options);
     if (!r) return r.error();
-    Result<DensityGridPtr> grid = mapGrid(path, out.grid());
-    if (!grid) return grid.error();
-    grid = encodeDensityGrid(grid.value(), options.encoding, path);
-    if (!grid) return grid.error();
-    VdbLoad load;
-    load.grid = grid.value();
-    try {
-        load.gridName = r.value().at("grid_name").get<std::string>();
-        load.warnings = r.value().at("warnings").get<std::vector<std::string>>();
-    } catch (const std::exception&) {
-        return Error{crashed(path)};
-    }
-    return load;
+    return finishLoad(path, r.value(), out, options);
 }
 
 Result<std::vector<VdbGridInfo>> inspectVdb(const std::string& path, const VdbImportOptions& options) {

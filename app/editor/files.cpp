@@ -47,6 +47,20 @@ bool hasDiscard(std::vector<std::string>& args) {
     return true;
 }
 
+// Moves an imported grid volume so that its grid's centre is at the camera's target, or 5 m ahead
+// when the target is behind the camera.
+void placeInView(const Camera& c, Volume& v) {
+    const glm::vec3 forward = glm::normalize(c.target - c.position);
+    const bool targetAhead = glm::dot(c.target - c.position, forward) > c.near;
+    const glm::vec3 place = targetAhead ? c.target : c.position + forward * 5.0f;
+    glm::vec3 centre(0.0f);
+    if (!v.density->empty()) {
+        const glm::vec3 mid = (v.density->indexMin() + v.density->indexMax()) * 0.5f;
+        centre = glm::vec3(v.density->gridFromIndex() * glm::vec4(mid, 1.0f));
+    }
+    v.transform.translation = place - centre;
+}
+
 }  // namespace
 
 std::string recentFilesPath() {
@@ -154,17 +168,7 @@ Result<Volume> importVdbVolume(const Scene& scene, const std::string& sceneDir, 
     v.file = relativeIfInside(path, sceneDir);
     v.grid = load.value().gridName;
     v.density = load.value().grid;
-    // The grid's centre at the camera's target, or 5 m ahead when the target is behind the camera.
-    const Camera& c = scene.camera;
-    const glm::vec3 forward = glm::normalize(c.target - c.position);
-    const bool targetAhead = glm::dot(c.target - c.position, forward) > c.near;
-    const glm::vec3 place = targetAhead ? c.target : c.position + forward * 5.0f;
-    glm::vec3 centre(0.0f);
-    if (!v.density->empty()) {
-        const glm::vec3 mid = (v.density->indexMin() + v.density->indexMax()) * 0.5f;
-        centre = glm::vec3(v.density->gridFromIndex() * glm::vec4(mid, 1.0f));
-    }
-    v.transform.translation = place - centre;
+    placeInView(scene.camera, v);
     return v;
 }
 
@@ -181,17 +185,7 @@ Result<Volume> importMeshVolume(const Scene& scene, const std::string& sceneDir,
     Result<VdbLoad> load = loadMeshDensity(absolutePath(path), v.edge_fade_m, options);
     if (!load) return load.error();
     v.density = load.value().grid;
-    // Placed like an imported VDB: the hull's centre at the camera's target (or 5 m ahead).
-    const Camera& c = scene.camera;
-    const glm::vec3 forward = glm::normalize(c.target - c.position);
-    const bool targetAhead = glm::dot(c.target - c.position, forward) > c.near;
-    const glm::vec3 place = targetAhead ? c.target : c.position + forward * 5.0f;
-    glm::vec3 centre(0.0f);
-    if (!v.density->empty()) {
-        const glm::vec3 mid = (v.density->indexMin() + v.density->indexMax()) * 0.5f;
-        centre = glm::vec3(v.density->gridFromIndex() * glm::vec4(mid, 1.0f));
-    }
-    v.transform.translation = place - centre;
+    placeInView(scene.camera, v);  // like an imported VDB
     return v;
 }
 
