@@ -185,10 +185,13 @@ shd::Accumulated distantFogAt(const DistantTable& t, const shd::FrameUniforms& f
 }
 
 // The per-pixel part of the point and spot lights' glow (shaders/shared/glow.h; GPU: composite.comp).
-vec3 lightGlow(const CompiledScene& cs, const FroxelVolumes& v, vec2 pixel, vec3 dir, float rayPerDepth, float viewDepth) {
+// Only the lights the light reach lists as glowing, as on the GPU.
+vec3 lightGlow(const CompiledScene& cs, const std::vector<int>& glowLights, const FroxelVolumes& v, vec2 pixel, vec3 dir,
+               float rayPerDepth, float viewDepth) {
     const vec3 origin = vec3(v.frame.cameraPosition);
     vec3 sum(0.0f);
-    for (const shd::LightData& l : cs.lights) {
+    for (int index : glowLights) {
+        const shd::LightData& l = cs.lights[static_cast<size_t>(index)];
         const shd::LightGlowRay r = shd::lightGlowRay(l, v.frame, origin, dir, viewDepth * rayPerDepth);
         if (r.radius <= 0.0f) continue;
         const ivec3 m = shd::lightGlowFroxel(r, origin, dir, v.frame);
@@ -203,7 +206,8 @@ vec3 lightGlow(const CompiledScene& cs, const FroxelVolumes& v, vec2 pixel, vec3
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
 void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
-                  const LocalShadowMaps& local, const FroxelVolumes& v, const DistantTable& distant, Image& img, int y) {
+                  const LocalShadowMaps& local, const FroxelVolumes& v, const DistantTable& distant,
+                  const std::vector<int>& glowLights, Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -231,7 +235,7 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         if (viewDepth > froxelFar && distant.entries > 0) {
             fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
         }
-        fog.scattering += lightGlow(cs, v, pixel, dir, rayPerDepth, viewDepth);
+        fog.scattering += lightGlow(cs, glowLights, v, pixel, dir, rayPerDepth, viewDepth);
         img.at(x, y) = shd::compositeFog(background, fog);
     }
 }
@@ -306,7 +310,7 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
 
     const DistantTable distant = buildDistantTable(cs, v.frame, threads);
     parallelFor(request.height, threads,
-                [&](int y) { compositeRow(cs, geometry, shadow, sun, local, v, distant, result.image, y); }, report);
+                [&](int y) { compositeRow(cs, geometry, shadow, sun, local, v, distant, reach.glowLights, result.image, y); }, report);
     if (request.debugView != shd::DEBUG_VIEW_FINAL)
         result.image = debugViewImage(v, request.debugView, request.debugSlice);
     return result;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clusters.h"
+#include "shaders/shared/glow.h"
 
 namespace brume {
 namespace {
@@ -67,6 +68,8 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
     };
     for (size_t i = 0; i < cs.lights.size(); ++i) {
         const shd::LightData& l = cs.lights[i];
+        if (shd::lightGlowRadius(l, frame) > 0.0f && (!culling || reachesMedia(l)))
+            out.glowLights.push_back(static_cast<int>(i));
         const bool surface = !culling || lightMayReachFrustum(l, frame, frame.projection.z, frame.projection.w);
         if (surface) out.surfaceLights.push_back(static_cast<int>(i));
         if (!shd::fogShadowsLight(l, frame.localFogShadows)) continue;
@@ -81,12 +84,15 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
 }
 
 std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount) {
-    std::vector<int> record(2 + 2 * lightCount, 0);
+    std::vector<int> record(3 + 3 * lightCount, 0);
     record[0] = static_cast<int>(reach.surfaceLights.size());
     for (size_t k = 0; k < reach.surfaceLights.size(); ++k) record[1 + k] = reach.surfaceLights[k];
     int* layers = &record[1 + lightCount];
     for (size_t i = 0; i < lightCount; ++i)
         if (reach.shadowVolume[i] != 0) layers[1 + layers[0]++] = static_cast<int>(i);
+    int* glow = &record[2 + 2 * lightCount];
+    glow[0] = static_cast<int>(reach.glowLights.size());
+    for (size_t k = 0; k < reach.glowLights.size(); ++k) glow[1 + k] = reach.glowLights[k];
     return record;
 }
 

@@ -25,6 +25,9 @@ struct LightReach {
     // a loop trip costs the same whether its body is skipped or not (docs/performance.md).
     std::vector<int> surfaceLights;
     std::vector<int> shadowVolume;   // per light: 1 = its transmittance layer is computed
+    // Lights whose glow (shared/glow.h) the composite adds per pixel, ascending: a glow radius in this
+    // frame, and (with culling) a range that reaches some volume's bounds; elsewhere the glow is 0.
+    std::vector<int> glowLights;
 };
 
 // The reach for `frame`, whose light pass reads `clusters`. culling = false: every light is a surface
@@ -40,8 +43,8 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
 bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth);
 
 // The ints the GPU reads after the cluster records (shared/clusters.h lightReachOffset): the surface
-// lights and the lights with a shadow-volume layer, each as a count and its indices padded to the
-// light count; 2 + 2 x lights ints.
+// lights, the lights with a shadow-volume layer and the glowing lights, each as a count and its
+// indices padded to the light count; 3 + 3 x lights ints.
 std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount);
 
 }  // namespace brume

@@ -228,8 +228,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(chooseVariant(cs));
     // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
     const glm::ivec3 c = shd::clusterDims(dims);
-    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(c.x * c.y * c.z) + 2 +
-                               2 * cs.lights.size();
+    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(c.x * c.y * c.z) + 3 +
+                               3 * cs.lights.size();
     BRUME_TRY(ensureBuffer(BufferId::lightClusters, clusterInts * sizeof(int), dirty));
     BRUME_TRY(ensureBuffer(BufferId::sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), dirty));
     BRUME_TRY(ensureBuffer(BufferId::localShadowMaps, std::max<size_t>(localShadowBytes, 4), dirty));

@@ -61,7 +61,7 @@ const std::array<PassDecl, 10> kPasses{{
     // Fog over the surfaces, continued past the froxel far from the distant fog table, plus the
     // lights' glow per pixel (shared/glow.h, which reads the media at the light).
     {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
-     {B::frame, B::lights, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
+     {B::frame, B::lights, B::lightClusters, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth, I::mediaScatteringG, I::mediaExtinction},
      {I::outputImage}, true},
     // One depth slice of density, scattering or transmittance over the output (only when asked).

@@ -68,20 +68,26 @@ vec3 lightGlow(vec2 pixel, float viewDepth) {
     vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
     vec3 origin = frame.cameraPosition.xyz;
     float rayEnd = viewDepth * rayPerDepth;
+    // Only the lights the light reach lists as glowing (shared/clusters.h): lights that reach no fog
+    // cost no loop trip.
+    int glow = lightReachOffset(frame.froxelDims.xyz) + 2 + 2 * frame.counts.w;
+    int glowing = lightClusters[glow];
     int hits = 0;
-    for (int i = 0; i < frame.counts.w; ++i) {
-        if (lightGlowRay(lights[i], frame, origin, dir, rayEnd).radius > 0.0f) ++hits;
+    for (int k = 0; k < glowing; ++k) {
+        if (lightGlowRay(lights[lightClusters[glow + 1 + k]], frame, origin, dir, rayEnd).radius > 0.0f) ++hits;
     }
     vec3 sum = vec3(0.0f);
     int next = 0;
-    for (int k = 0; k < hits; ++k) {
-        int i = next;
+    for (int h = 0; h < hits; ++h) {
+        int k = next;
+        int i = lightClusters[glow + 1 + k];
         LightGlowRay r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
-        while (r.radius <= 0.0f && i + 1 < frame.counts.w) {
-            ++i;
+        while (r.radius <= 0.0f && k + 1 < glowing) {
+            ++k;
+            i = lightClusters[glow + 1 + k];
             r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
         }
-        next = i + 1;
+        next = k + 1;
         ivec3 m = lightGlowFroxel(r, origin, dir, frame);
         vec4 scatteringG = imageLoad(mediaScatteringG, m);
         vec3 sigmaT = imageLoad(mediaExtinction, m).rgb;

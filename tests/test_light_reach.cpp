@@ -11,6 +11,7 @@
 #include "core/light_reach.h"
 #include "core/render.h"
 #include "core/shadows.h"
+#include "shaders/shared/glow.h"
 
 using namespace brume;
 using glm::vec3;
@@ -135,4 +136,26 @@ TEST(LightReach, NoLayerForLightsThatReachNoMedia) {
     const shd::FrameUniforms frame = frameOf(s, cs);
     const LightClusters clusters = buildLightClusters(cs, frame);
     EXPECT_EQ(buildLightReach(cs, frame, clusters, true, /*surfaces=*/false).shadowVolume, (std::vector<int>{1, 0}));
+}
+
+// The composite's glow loops over the glowing lights only (shared/glow.h, composite.comp), so that
+// lights that reach no fog cost no loop trip: with a box as the only volume, the point light inside
+// it glows, the one whose range stops short of it does not, nor the sun (no glow radius); without
+// culling every light with a glow radius is listed. The record carries the list after the layers.
+TEST(LightReach, GlowOnlyForLightsWhoseRangeReachesAVolume) {
+    Scene s = reachScene();
+    s.volumes = {test::boxFog({-2.0f, 0.5f, 0.0f}, vec3(1.0f), 0.1f, 0.2f, 0.05f)};
+    s.lights = {s.lights[0], point({-2.0f, 0.5f, 0.0f}, 1.5f), point({2.0f, 0.5f, -2.0f}, 1.0f)};
+    const CompiledScene cs = compileScene(s);
+    const shd::FrameUniforms frame = frameOf(s, cs);
+    ASSERT_GT(shd::lightGlowRadius(cs.lights[1], frame), 0.0f);
+    ASSERT_GT(shd::lightGlowRadius(cs.lights[2], frame), 0.0f);
+    const LightClusters clusters = buildLightClusters(cs, frame);
+    const LightReach reach = buildLightReach(cs, frame, clusters);
+    EXPECT_EQ(reach.glowLights, (std::vector<int>{1}));
+    EXPECT_EQ(buildLightReach(cs, frame, clusters, /*culling=*/false).glowLights, (std::vector<int>{1, 2}));
+    const std::vector<int> record = lightReachRecord(reach, cs.lights.size());
+    ASSERT_EQ(record.size(), 3 + 3 * cs.lights.size());
+    EXPECT_EQ(record[2 + 2 * cs.lights.size()], 1);
+    EXPECT_EQ(record[3 + 2 * cs.lights.size()], 1);
 }
