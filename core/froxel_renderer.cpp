@@ -184,12 +184,12 @@ shd::Accumulated distantFogAt(const DistantTable& t, const shd::FrameUniforms& f
     return shd::distantTableBlend(byEntry[0], byEntry[1], k.blend);
 }
 
-// The per-pixel part of the point and spot lights' glow (shaders/shared/glow.h; GPU: composite.comp).
-// Only the lights the light reach lists as glowing, as on the GPU.
-vec3 lightGlow(const CompiledScene& cs, const std::vector<int>& glowLights, const FroxelVolumes& v, vec2 pixel, vec3 dir,
-               float rayPerDepth, float viewDepth) {
+// The per-pixel part of the point and spot lights' glow (shaders/shared/glow.h; GPU: glow.comp), added
+// to the composited colour light by light, in the order the GPU's glow pass adds them. Only the
+// lights the light reach lists as glowing, as on the GPU.
+vec3 addLightGlow(vec3 color, const CompiledScene& cs, const std::vector<int>& glowLights, const FroxelVolumes& v,
+                  vec2 pixel, vec3 dir, float rayPerDepth, float viewDepth) {
     const vec3 origin = vec3(v.frame.cameraPosition);
-    vec3 sum(0.0f);
     for (int index : glowLights) {
         const shd::LightData& l = cs.lights[static_cast<size_t>(index)];
         const shd::LightGlowRay r = shd::lightGlowRay(l, v.frame, origin, dir, viewDepth * rayPerDepth);
@@ -198,10 +198,10 @@ vec3 lightGlow(const CompiledScene& cs, const std::vector<int>& glowLights, cons
         const size_t i = froxelIndex(v.dims, m.x, m.y, m.z);
         const vec4 scatteringG = v.mediaScatteringG[i];
         const vec3 toEnter = sampleIntegrated(v, pixel, r.enter / rayPerDepth).transmittance;
-        sum += toEnter * vec3(scatteringG) *
-               shd::lightGlowPerSigmaS(l, r, origin, dir, vec3(v.mediaExtinction[i]), scatteringG.w);
+        color += toEnter * vec3(scatteringG) *
+                 shd::lightGlowPerSigmaS(l, r, origin, dir, vec3(v.mediaExtinction[i]), scatteringG.w);
     }
-    return sum;
+    return color;
 }
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
@@ -235,8 +235,8 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         if (viewDepth > froxelFar && distant.entries > 0) {
             fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
         }
-        fog.scattering += lightGlow(cs, glowLights, v, pixel, dir, rayPerDepth, viewDepth);
-        img.at(x, y) = shd::compositeFog(background, fog);
+        img.at(x, y) = addLightGlow(shd::compositeFog(background, fog), cs, glowLights, v, pixel, dir, rayPerDepth,
+                                    viewDepth);
     }
 }
 

@@ -294,7 +294,8 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(corners.x, shd::SCREEN_GROUP_X), groups(corners.y, shd::SCREEN_GROUP_Y), 1);
             break;
         }
-        case Dispatch::Raster: break;
+        case Dispatch::Raster:
+        case Dispatch::GlowRects: break;  // recordGlow dispatches
     }
 }
 
@@ -343,6 +344,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         ctx.res = &res;
         ctx.historyWriteIndex = historyWriteIndex;
         ctx.debugParams = debugParams;
+        ctx.glow = &glow;
         ctx.ambient = ambient;
         ctx.cameraFar = cameraFar;
         ctx.vertexCount = vertexCount;
@@ -368,6 +370,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;
             case Record::DebugView: recordDebugView(ctx); break;
+            case Record::Glow: recordGlow(ctx); break;
         }
         for (ResRef r : p.reads) hazards.read(r, stages);
         for (ResRef r : p.writes) hazards.wrote(r, stages);

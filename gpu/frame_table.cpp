@@ -16,7 +16,7 @@ using H = HistoryId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 10> kPasses{{
+const std::array<PassDecl, 11> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
@@ -58,12 +58,16 @@ const std::array<PassDecl, 10> kPasses{{
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters},
      {B::distantTable}, true},
-    // Fog over the surfaces, continued past the froxel far from the distant fog table, plus the
-    // lights' glow per pixel (shared/glow.h, which reads the media at the light).
+    // Fog over the surfaces, continued past the froxel far from the distant fog table.
     {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
-     {B::frame, B::lights, B::lightClusters, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
-      I::sceneDepth, I::mediaScatteringG, I::mediaExtinction},
+     {B::frame, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
      {I::outputImage}, true},
+    // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
+    // added to the output over each glowing light's screen rectangle only.
+    {"glow", "glow", Variant::None, Dispatch::GlowRects, When::Always, Record::Glow,
+     {B::frame, B::lights, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG, I::mediaExtinction,
+      I::outputImage},
+     {I::outputImage}},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,
      {B::frame, I::mediaExtinction, I::sourceImage, I::integratedTransmittance},

@@ -149,6 +149,7 @@ enum class Dispatch : uint8_t {
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
+    GlowRects,    // one dispatch per glowing light over its screen rectangle (shared/glow.h), SCREEN_GROUP_*
     Raster,       // the geometry pass's draw (not a dispatch)
 };
 
@@ -187,6 +188,7 @@ enum class Record : uint8_t {
     TemporalCopy,  // dispatch, then copy the history's output over source and extinction (pass_temporal.cpp)
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
+    Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)
 };
 
 struct PassDecl {
@@ -204,7 +206,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 10> kPasses;
+extern const std::array<PassDecl, 11> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -214,6 +214,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!vertices.empty(), &lightFroxels);
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->spec = sceneSpecKey(cs, frame, lightReach);
+    s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -22,6 +23,7 @@ struct PassContext {
     const ComputePass* pipeline = nullptr;  // compute passes: this frame's variant
     int historyWriteIndex = 0;              // the history side written this frame
     shd::DebugViewParams debugParams{};
+    const std::vector<shd::GlowParams>* glow = nullptr;  // glow: one dispatch each
     glm::vec3 ambient{0.0f};    // geometry: sky radiance
     float cameraFar = 0.0f;     // geometry: sky view depth
     uint32_t vertexCount = 0;   // geometry
@@ -62,5 +64,14 @@ void recordTemporal(const PassContext& ctx);
 
 // Debug view (Record::DebugView): the view and slice as push constants, then the dispatch.
 void recordDebugView(const PassContext& ctx);
+
+// Glow (Record::Glow): per glowing light in order, its rectangle and index as push constants, a
+// dispatch over the rectangle, and a barrier before the next (the rectangles may overlap).
+void recordGlow(const PassContext& ctx);
+
+// The glow pass's dispatches for the lights the light reach lists as glowing (core/light_reach.h),
+// in that order, leaving out those whose ball no pixel's ray meets (shd::lightGlowScreenRect).
+std::vector<shd::GlowParams> glowDispatches(const std::vector<shd::LightData>& lights, const shd::FrameUniforms& frame,
+                                            const std::vector<int>& glowLights);
 
 }  // namespace brume::gpu

@@ -1,5 +1,6 @@
 #include "pipeline.h"
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <optional>
@@ -23,8 +24,10 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
                                                         VK_SHADER_STAGE_FRAGMENT_BIT;
         bindings[static_cast<size_t>(d.binding)] = {static_cast<uint32_t>(d.binding), d.type, 1, stages, nullptr};
     }
-    // The push constants are the debug view pass's parameters; the other passes ignore them.
-    return createDescriptorSet(device, bindings, sizeof(shd::DebugViewParams), "froxel");
+    // The push constants are the debug view's or the glow pass's parameters; the other passes ignore them.
+    return createDescriptorSet(device, bindings,
+                               static_cast<uint32_t>(std::max(sizeof(shd::DebugViewParams), sizeof(shd::GlowParams))),
+                               "froxel");
 }
 
 Result<DescriptorBindings> createDescriptorSet(const Device& device, std::span<const VkDescriptorSetLayoutBinding> bindings,

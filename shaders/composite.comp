@@ -1,6 +1,7 @@
 // Pass 4: fog over the rasterized scene, read from the integrated volume with the shared lookup
 // rule (shd::integratedLookup; core: sampleIntegrated / compositeRow), then continued from the
 // froxel far to the surface with the distant fog table (shared/distant_table.h, distant_fog.comp).
+// The lights' glow is added after it by glow.comp, over the pixels near each glowing light only.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
@@ -58,45 +59,6 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
     return distantTableBlend(byEntry[0], byEntry[1], k.blend);
 }
 
-// The per-pixel part of the point and spot lights' glow (shared/glow.h; core: compositeRow), summed
-// in light order. Lavapipe runs every branch and every loop trip of a batch's slowest lane
-// (docs/performance.md): a cheap test counts the lights whose ball this ray meets, and the quadrature
-// runs that many trips (once, masked, where none), not once per light.
-vec3 lightGlow(vec2 pixel, float viewDepth) {
-    vec3 viewRay = viewRayFromPixel(pixel, frame);
-    float rayPerDepth = length(viewRay);
-    vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
-    vec3 origin = frame.cameraPosition.xyz;
-    float rayEnd = viewDepth * rayPerDepth;
-    // Only the lights the light reach lists as glowing (shared/clusters.h): lights that reach no fog
-    // cost no loop trip.
-    int glow = lightReachOffset(frame.froxelDims.xyz) + 2 + 2 * frame.counts.w;
-    int glowing = lightClusters[glow];
-    int hits = 0;
-    for (int k = 0; k < glowing; ++k) {
-        if (lightGlowRay(lights[lightClusters[glow + 1 + k]], frame, origin, dir, rayEnd).radius > 0.0f) ++hits;
-    }
-    vec3 sum = vec3(0.0f);
-    int next = 0;
-    for (int h = 0; h < hits; ++h) {
-        int k = next;
-        int i = lightClusters[glow + 1 + k];
-        LightGlowRay r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
-        while (r.radius <= 0.0f && k + 1 < glowing) {
-            ++k;
-            i = lightClusters[glow + 1 + k];
-            r = lightGlowRay(lights[i], frame, origin, dir, rayEnd);
-        }
-        next = k + 1;
-        ivec3 m = lightGlowFroxel(r, origin, dir, frame);
-        vec4 scatteringG = imageLoad(mediaScatteringG, m);
-        vec3 sigmaT = imageLoad(mediaExtinction, m).rgb;
-        vec3 toEnter = sampleIntegrated(pixel, r.enter / rayPerDepth).transmittance;
-        sum += toEnter * scatteringG.rgb * lightGlowPerSigmaS(lights[i], r, origin, dir, sigmaT, scatteringG.a);
-    }
-    return sum;
-}
-
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(px, frame.counts.xy))) return;
@@ -107,7 +69,6 @@ void main() {
     float froxelFar = frame.froxelRange.y;
     // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; the closed form is compiled out.
     if (SPEC_DISTANT_FOG != 0 && viewDepth > froxelFar) fog = composeAccumulated(fog, distantFogAt(pixel, viewDepth));
-    fog.scattering += lightGlow(pixel, viewDepth);
     vec3 color = compositeFog(background, fog);
     imageStore(outputImage, px, vec4(color, 1.0f));
 }

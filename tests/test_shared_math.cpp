@@ -537,3 +537,38 @@ TEST(Density, ZeroDivisorsFromCodeStayFinite) {
         EXPECT_TRUE(std::isfinite(len)) << toString(v.type);
     }
 }
+
+// The glow pass runs over each light's screen rectangle only (shared/glow.h lightGlowScreenRect): every
+// pixel whose ray meets the ball, as the composite's ray from the pixel centre, lies inside it; a
+// light in view gets a rectangle around its ball, not the image; lights near the camera, at the
+// image's edge and behind the camera are covered too.
+TEST(Lights, GlowScreenRectHoldsEveryPixelWhoseRayMeetsTheBall) {
+    Scene scene;
+    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::Low);
+    const int w = 160, h = 90;
+    const shd::FrameUniforms f = makeFrameUniforms(scene, compileScene(scene), w, h, fs);
+    const glm::vec3 origin = glm::vec3(f.cameraPosition);
+    const float farDepth = f.projection.w;
+    int tight = 0;
+    for (const glm::vec3 position : {glm::vec3(0.4f, 1.2f, 1.0f), glm::vec3(-3.0f, 0.3f, 2.0f), glm::vec3(0.0f, 2.0f, 7.6f),
+                                     glm::vec3(6.5f, 1.0f, 0.0f), glm::vec3(2.0f, 5.0f, -30.0f), glm::vec3(0.0f, 2.0f, 9.5f)}) {
+        Light point = makeLight(LightType::Point);
+        point.position = position;
+        const shd::LightData l = compileLight(point);
+        const glm::ivec4 rect = shd::lightGlowScreenRect(l, f);
+        int inside = 0;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const glm::vec3 viewRay = shd::viewRayFromPixel(glm::vec2(x, y) + glm::vec2(0.5f), f);
+                const glm::vec3 dir = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(viewRay, 0.0f)));
+                if (shd::lightGlowRay(l, f, origin, dir, farDepth * glm::length(viewRay)).radius <= 0.0f) continue;
+                ++inside;
+                EXPECT_TRUE(x >= rect.x && x <= rect.z && y >= rect.y && y <= rect.w)
+                    << "light at " << position.x << ", " << position.y << ", " << position.z << ": pixel " << x << ", " << y;
+            }
+        }
+        const int area = rect.z < rect.x ? 0 : (rect.z - rect.x + 1) * (rect.w - rect.y + 1);
+        if (inside > 0 && area < w * h / 4) ++tight;
+    }
+    EXPECT_GE(tight, 2);  // the lights well in view: a rectangle around the ball, not the image
+}

@@ -132,6 +132,46 @@ BRUME_FUNC vec3 lightGlowPerSigmaS(LightData l, LightGlowRay r, vec3 origin, vec
     return sum;
 }
 
+// The glow pass (glow.comp; core: compositeRow) adds each glowing light's pixel part over the pixels
+// whose rays can meet its ball only: one dispatch per light over lightGlowScreenRect, its parameters
+// as push constants. Lavapipe pays for the quadrature on every pixel it runs on, taken or not
+// (docs/performance.md), so in the composite it cost every pixel of the screen.
+struct GlowParams {
+    ivec4 rect;   // first and last pixel (x0, y0, x1, y1) of the dispatch, inclusive
+    ivec4 light;  // x: the light's index; yzw unused
+};
+
+// Pixels (x0, y0, x1, y1), inclusive, clamped to the image, outside which no pixel centre's ray meets
+// light l's glow ball (lightGlowRay's radius is 0 there); x1 < x0 when none can. Conservative: the
+// ball's view-space bounding box projected through its corners (x / depth is monotonic in each of x
+// and depth), one pixel of margin; the whole image when the box reaches behind the camera near.
+BRUME_FUNC ivec4 lightGlowScreenRect(LightData l, FrameUniforms f) {
+    ivec4 none = ivec4(0, 0, -1, -1);
+    ivec4 all = ivec4(0, 0, f.counts.x - 1, f.counts.y - 1);
+    float radius = lightGlowRadius(l, f);
+    if (radius <= 0.0f) return none;
+    vec3 c = vec3(f.viewFromWorld * vec4(vec3(l.positionRange), 1.0f));
+    float dNear = -c.z - radius;
+    float dFar = -c.z + radius;
+    if (!(dNear > 0.5f * f.projection.z)) return all;
+    // Pixel coordinate of view-space slope s = x / depth (froxel.h viewRayFromPixel inverted).
+    float sxLo = min((c.x - radius) / dNear, (c.x - radius) / dFar);
+    float sxHi = max((c.x + radius) / dNear, (c.x + radius) / dFar);
+    float syLo = min((c.y - radius) / dNear, (c.y - radius) / dFar);
+    float syHi = max((c.y + radius) / dNear, (c.y + radius) / dFar);
+    float w = float(f.counts.x);
+    float h = float(f.counts.y);
+    float px0 = (sxLo / f.projection.x + 1.0f) * 0.5f * w;
+    float px1 = (sxHi / f.projection.x + 1.0f) * 0.5f * w;
+    float py0 = (1.0f - syHi / f.projection.y) * 0.5f * h;
+    float py1 = (1.0f - syLo / f.projection.y) * 0.5f * h;
+    // Pixel i's centre is at i + 0.5.
+    vec4 r = vec4(floor(px0 - 0.5f) - 1.0f, floor(py0 - 0.5f) - 1.0f, ceil(px1 - 0.5f) + 1.0f, ceil(py1 - 0.5f) + 1.0f);
+    r = clamp(r, vec4(-1.0f), vec4(w, h, w, h));
+    ivec4 i = ivec4(max(int(r.x), 0), max(int(r.y), 0), min(int(r.z), f.counts.x - 1), min(int(r.w), f.counts.y - 1));
+    return i.z < i.x || i.w < i.y ? none : i;
+}
+
 BRUME_NAMESPACE_END
 
 #endif
