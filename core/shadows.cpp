@@ -105,10 +105,6 @@ glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& s
     // The vdb layer at the clamped lookup even outside the grid's sample points (the image borders'
     // half froxel, past the froxel far): there is no exact form to fall back on.
     const glm::vec3 vdb = vdbLayerBlend(sv, frame, light, s.k);
-    if (s.inside) {
-        const shd::ShadowBlend b = blendShadowCells(sv, light, s.k);
-        if (b.trusted) return b.transmittance * vdb;
-    }
     return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
 }
 

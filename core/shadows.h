@@ -54,8 +54,9 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
                                  int light, const shd::ShadowLookup& k, glm::vec3 p, glm::vec3 toLight,
                                  float distance);
 
-// The same for a surface point p (the shadow ray's origin): the volume at p's froxel coordinates
-// inside the grid, the exact closed form outside it (past the froxel far) and at shadow edges.
+// The same for a surface point p (the shadow ray's origin): the exact closed form everywhere (as the
+// GPU's geometry pass, where the volume's blend cost more than it saved: docs/performance.md,
+// "perfgeo"), times the vdb layer's blend at p's froxel coordinates.
 glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
                                   int light, glm::vec3 p, glm::vec3 toLight, float distance);
 

@@ -25,6 +25,10 @@ void main() {
     vec3 m = abs(worldPos);
     vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
     SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadowReduction);
+    // The sun shadow map serves one light (frame.sunShadowLight): looked up once, not in every trip of
+    // the light loop (lavapipe runs the lookup for every light, mapped or not: docs/performance.md).
+    int sunLight = frame.sunShadowLight - 1;
+    float sunVisibility = sunShadowVisibility(sunLight, origin);
     // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
     int reach = lightReachOffset(frame.froxelDims.xyz);
     int count = lightClusters[reach];
@@ -34,7 +38,7 @@ void main() {
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
         radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *
-                    sunShadowVisibility(i, origin) * localShadowVisibility(i, origin);
+                    (i == sunLight ? sunVisibility : 1.0f) * localShadowVisibility(i, origin);
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;
