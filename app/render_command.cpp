@@ -300,14 +300,16 @@ static bool scrollsTextures(const Scene& scene) {
     return false;
 }
 
-// request.frames frames; with an orbit, a scrolling density texture or keyframes, one render call per frame
+// request.frames frames; with an orbit, a scrolling density texture, keyframes or influencers, one render call per frame
 // (each with its camera and scene time, the history carried over by the session's renderer), progress
 // shown for the last only so it never goes back. Frame n of N is at time - (N - 1 - n) / fps: the
 // written frame is at --time whatever --frames is.
 static std::variant<RenderOutput, RenderFailure> renderFrames(RenderSession& session, const Scene& scene,
                                                               const RenderRequest& request, float orbitDegPerFrame,
                                                               float fps) {
-    if (orbitDegPerFrame == 0.0f && (request.frames <= 1 || (!scrollsTextures(scene) && !hasKeys(scene))))
+    // Influencers move and their wakes decay with the time too (docs/scene-format.md, Influencers).
+    if (orbitDegPerFrame == 0.0f &&
+        (request.frames <= 1 || (!scrollsTextures(scene) && !hasKeys(scene) && scene.influencers.empty())))
         return session.render(bakeKeys(scene, scene.time_s), request);
     Scene s = scene;
     RenderRequest frame = request;

@@ -166,6 +166,7 @@ CompiledScene compileScene(const Scene& scene) {
     cs.ambient = scene.ambient;
     cs.cameraPosition = scene.camera.position;
     cs.time = scene.time_s;
+    cs.influence = compileInfluence(scene.influencers, scene.time_s);
     size_t gridOffset = 0;
     for (const Volume& v : scene.volumes) {
         shd::VolumeData d = compileVolume(v);
@@ -225,6 +226,10 @@ shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 p) {
         if (!shd::insideBounds(cs.volumes[i], p)) continue;
         m = shd::addMedium(m, cs.volumes[i], volumeDensity(cs, i, p));
     }
+    // Only where there is fog and some influencer or wake reaches (its box): the factor's cost
+    // follows the froxels they touch.
+    if (m.gWeight > 0.0f || m.sigmaT != glm::vec3(0.0f) || m.emission != glm::vec3(0.0f))
+        if (shd::insideInfluenceBounds(cs.influence.header, p)) m = shd::influenceScaleMedia(m, influenceFactor(cs.influence, p));
     return m;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "../shaders/shared/brume.h"
+#include "influence.h"
 #include "quality.h"
 #include "scene.h"
 
@@ -22,6 +23,9 @@ struct CompiledScene {
     glm::vec3 ambient{0.0f};
     glm::vec3 cameraPosition{0.0f};
     float time = 0.0f;  // scene time [s]: density textures scroll with it
+    // The influencers and their wakes at `time` (core/influence.h): every volume's density is
+    // multiplied by influenceFactor in the camera's fog, not in fog shadows.
+    InfluenceSet influence;
 };
 
 shd::VolumeData compileVolume(const Volume& v);
@@ -39,7 +43,8 @@ float plainVolumeDensity(const CompiledScene& cs, size_t i, glm::vec3 worldPos);
 // Volume i's density texture factor at a world position at cs.time (1 when it has none).
 float densityTextureFactor(const CompiledScene& cs, size_t i, glm::vec3 worldPos);
 
-// Sum of every volume's media at a world position (vdb volumes sample their grid).
+// Sum of every volume's media at a world position (vdb volumes sample their grid), times the
+// influencers' factor there.
 shd::MediaSample mediaAt(const CompiledScene& cs, glm::vec3 worldPos);
 
 // Closed-form fog of the height and depth volumes along the camera ray [s0, s1] (origin = camera

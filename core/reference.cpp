@@ -317,6 +317,10 @@ private:
                     add((static_cast<double>(v.params.x + v.params.y) - ray.origin.y) / ray.dir.y);
             }
         }
+        // The influencers' box: a piece inside it starts inside it, where stepLimit resolves the falloff.
+        if (cs_.influence.header.count.x > 0)
+            addInterval(rayBoxInterval(ray.origin, ray.dir, glm::dvec3(glm::vec3(cs_.influence.header.boundsMin)),
+                                       glm::dvec3(glm::vec3(cs_.influence.header.boundsMax))));
         std::sort(t.begin(), t.end());
         t.erase(std::unique(t.begin(), t.end()), t.end());
         return t;
@@ -413,6 +417,8 @@ private:
                 m = shd::addMedium(m, v, volumeDensity(cs_, i, p));
             }
         }
+        // Influencers thin the fog the camera sees, not the fog shadows (fogTransmittance).
+        if (shd::insideInfluenceBounds(cs_.influence.header, p)) m = shd::influenceScaleMedia(m, influenceFactor(cs_.influence, p));
         return m;
     }
 
@@ -448,6 +454,8 @@ private:
             const float dist = std::max(glm::length(glm::vec3(l.positionRange) - p), shd::LIGHT_MIN_DISTANCE);
             h = std::min(h, static_cast<double>(params_.light_step * dist));
         }
+        // An influencer's falloff changes over its radius: the smallest radius is the scale in their box.
+        if (shd::insideInfluenceBounds(cs_.influence.header, p)) h = std::min(h, static_cast<double>(params_.density_step) * smallestInfluenceRadius());
         for (const shd::VolumeData& v : cs_.volumes) {
             if (!shd::insideBounds(v, p)) continue;
             h = std::min(h, static_cast<double>(params_.density_step) * densityScale(v, ray, p));
@@ -455,6 +463,12 @@ private:
             if (shd::hasDensityTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v));
         }
         return h;
+    }
+
+    double smallestInfluenceRadius() const {
+        double r = kInf;
+        for (const shd::InfluenceSample& s : cs_.influence.samples) r = std::min(r, static_cast<double>(s.a.w));
+        return r;
     }
 
     // World edge of a density texture voxel: a tile holds textureSize voxels per axis.

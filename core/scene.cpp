@@ -58,6 +58,7 @@ const char* toString(VolumeType t) {
     return "?";
 }
 const char* toString(HeightProfile p) { return p == HeightProfile::Exponential ? "exponential" : "linear"; }
+const char* toString(InfluencerType t) { return t == InfluencerType::Sphere ? "sphere" : "capsule"; }
 const char* toString(GeometryType t) {
     switch (t) {
         case GeometryType::Plane: return "plane";

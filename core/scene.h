@@ -176,6 +176,26 @@ struct Geometry {
     bool operator==(const Geometry&) const = default;
 };
 
+enum class InfluencerType { Sphere, Capsule };
+
+// A sphere or upright capsule moving along a path that thins every volume's fog and leaves a wake
+// that recovers with a half-life (docs/scene-format.md, "Influencers"; core/influence.h).
+struct Influencer {
+    InfluencerType type = InfluencerType::Sphere;
+    std::string name;
+    float radius = settings::influencer_radius.f();
+    float length = settings::influencer_length.f();  // capsule
+    float strength = settings::influencer_strength.f();
+    float wake_half_life_s = settings::influencer_half_life.f();
+    float wake_step_s = settings::influencer_wake_step.f();
+    int wake_samples = settings::influencer_wake_samples.i();
+    // Target "position": the centre over time (at least 2 keys in increasing time; the reader checks).
+    KeyTrack path;
+    // Editor view state, like Volume::hidden: never saved, the editor renders a copy without it.
+    bool hidden = false;
+    bool operator==(const Influencer&) const = default;
+};
+
 struct Scene {
     int version = 1;
     Camera camera;
@@ -186,6 +206,7 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Volume> volumes;
     std::vector<Geometry> geometry;
+    std::vector<Influencer> influencers;
     // Folder of the scene file, for resolving relative paths (vdb files); not serialized.
     std::string baseDir;
     // Scene time [s] (density textures scroll with it, keyframes are evaluated at it): a render input (brume render --time), not
@@ -194,7 +215,7 @@ struct Scene {
     bool operator==(const Scene& o) const {
         return version == o.version && camera == o.camera && render == o.render && froxels == o.froxels &&
                temporal == o.temporal && ambient == o.ambient && lights == o.lights && volumes == o.volumes &&
-               geometry == o.geometry;
+               geometry == o.geometry && influencers == o.influencers;
     }
 };
 
@@ -203,5 +224,6 @@ const char* toString(LightType t);
 const char* toString(VolumeType t);
 const char* toString(HeightProfile p);
 const char* toString(GeometryType t);
+const char* toString(InfluencerType t);
 
 }  // namespace brume

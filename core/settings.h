@@ -106,6 +106,18 @@ inline constexpr Setting keys_interpolation {"*.keys.*.interpolation", K::Choice
 inline constexpr Setting keys_time        {"*.keys.*[].time", K::Number, "s", -kBig, kBig, {0}, "", "Scene time of a key; the keys of a list in strictly increasing time. Before the first key and after the last the setting holds that key's value."};
 inline constexpr Setting keys_value       {"*.keys.*[].value", K::Number, "", -kCoef, kCoef, {0}, "", "The keyed setting's value at that time: a number or an array of 3 like the setting itself, with its unit and within its range."};
 
+inline constexpr Setting influencer_type  {"influencers[].type", K::Choice, "", 0, 0, {0}, "sphere|capsule", "Shape that thins the fog it passes through (docs/scene-format.md, Influencers); required. A capsule stands upright: its axis runs along world Y, centred on the path position."};
+inline constexpr Setting influencer_name  {"influencers[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
+inline constexpr Setting influencer_radius {"influencers[].radius", K::Number, "m", 1e-3, kBig, {1}, "", "Radius of the sphere, or of the capsule around its axis; the thinning falls off smoothly from the centre (axis) to 0 at this distance: 1 - smoothstep(0, 1, distance / radius)."};
+inline constexpr Setting influencer_length {"influencers[type=capsule].length", K::Number, "m", 0, kBig, {2}, "", "Length of the capsule's upright axis (its height is length + 2 radius)."};
+inline constexpr Setting influencer_strength {"influencers[].strength", K::Number, "", 0, 1, {1}, "", "Every volume's density is multiplied by 1 - strength x falloff: 1 empties the fog at the centre, 0 leaves it."};
+inline constexpr Setting influencer_half_life {"influencers[].wake_half_life_s", K::Number, "s", 0, 1e4, {1}, "", "Where the influencer has passed, its thinning decays by half every wake_half_life_s (the fog flows back); 0 = no wake."};
+inline constexpr Setting influencer_wake_step {"influencers[].wake_step_s", K::Number, "s", 1e-3, 100, {0.05}, "", "The wake is the influencer's shape at the scene times that are multiples of this step (not the frame times, so any frame renders alone); a larger step when wake_samples would not cover the live wake (until strength x 2^(-age / half-life) < 0.001)."};
+inline constexpr Setting influencer_wake_samples {"influencers[].wake_samples", K::Integer, "", 0, 1024, {64}, "", "Most past positions the wake holds; the step grows to wake half-life x log2(strength / 0.001) / wake_samples when that exceeds wake_step_s. Cost: each froxel in the wake's box evaluates them all."};
+inline constexpr Setting influencer_path_interpolation {"influencers[].path_interpolation", K::Choice, "", 0, 0, {0}, "linear|smooth", "How the influencer moves between its path points: straight lines, or smooth (Catmull-Rom through the points, like keys)."};
+inline constexpr Setting influencer_path_time {"influencers[].path[].time", K::Number, "s", -kBig, kBig, {0}, "", "Scene time of a path point; at least 2 points, in strictly increasing time. Before the first and after the last the influencer holds that point's position."};
+inline constexpr Setting influencer_path_position {"influencers[].path[].position", K::Vec3, "m", -kBig, kBig, {0, 0, 0}, "", "Centre of the sphere (capsule) at that time."};
+
 inline constexpr Setting geometry_type    {"geometry[].type", K::Choice, "", 0, 0, {0}, "plane|box|sphere", "Kind of surface; required."};
 inline constexpr Setting geometry_name    {"geometry[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting geometry_height  {"geometry[type=plane].height", K::Number, "m", -kBig, kBig, {0}, "", "Height of the horizontal plane (normal +Y)."};
@@ -129,6 +141,9 @@ inline constexpr std::array kAll = {
     &texture_strength, &texture_exponent, &transform_translation, &transform_rotation, &transform_scale,
     &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
     &keys_interpolation, &keys_time, &keys_value,
+    &influencer_type, &influencer_name, &influencer_radius, &influencer_length, &influencer_strength,
+    &influencer_half_life, &influencer_wake_step, &influencer_wake_samples, &influencer_path_interpolation,
+    &influencer_path_time, &influencer_path_position,
     &geometry_type, &geometry_name, &geometry_height, &geometry_center, &geometry_radius, &geometry_albedo,
     &geometry_emission,
 };

@@ -77,6 +77,8 @@ uint64_t temporalSceneKey(const CompiledScene& cs, const Scene& scene, glm::ivec
     h = fnv1a(h, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
     h = fnv1a(h, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
     h = fnv1a(h, &cs.ambient, sizeof(cs.ambient));
+    // A moved influencer or a decayed wake is a changed medium, like a moved volume.
+    h = fnv1a(h, cs.influence.samples.data(), cs.influence.samples.size() * sizeof(shd::InfluenceSample));
     h = fnv1a(h, &dims, sizeof(dims));
     // Geometry shadows the froxels (sun and point/spot shadow maps): a moved box moves its shadow.
     // Its colours do not reach the froxels, so recolouring keeps the history.

@@ -22,7 +22,7 @@ enum class HistoryMode {
 };
 
 // Everything that, when edited, must drop the history so that no edit ever leaves a ghost: the
-// compiled volumes, lights and ambient, the shapes and places of the geometry (it shadows the
+// compiled volumes, lights, ambient and influence samples, the shapes and places of the geometry (it shadows the
 // froxels), the grid size and the temporal settings. The camera is not
 // in it: camera motion is what reprojection handles. FNV-1a over the compiled records' bytes.
 uint64_t temporalSceneKey(const CompiledScene& cs, const Scene& scene, glm::ivec3 dims);

@@ -205,6 +205,10 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     // Storage buffers cannot be empty: keep room for at least one record.
     BRUME_TRY(ensureBuffer(BufferId::volumes, std::max<size_t>(cs.volumes.size(), 1) * sizeof(shd::VolumeData), dirty));
     BRUME_TRY(ensureBuffer(BufferId::lights, std::max<size_t>(cs.lights.size(), 1) * sizeof(shd::LightData), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::influence,
+                           sizeof(shd::InfluenceHeader) +
+                               std::max<size_t>(cs.influence.samples.size(), 1) * sizeof(shd::InfluenceSample),
+                           dirty));
     bool vertexDirty = false;
     BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                            Memory::Upload, "geometry vertices", vertexDirty));

@@ -29,9 +29,10 @@ const std::array<PassDecl, 11> kPasses{{
      {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
+    // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
-     {B::frame, B::volumes, B::vdbGrids},
-     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}},
+     {B::frame, B::volumes, B::vdbGrids, B::influence},
+     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Light, Dispatch::MediaFroxels, When::Always, Record::Dispatch,

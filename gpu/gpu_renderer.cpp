@@ -148,6 +148,7 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     k[SpecId::SPEC_VDB_SHADOWS] = frame.vdbShadowSamples > 0 ? 1 : 0;
     const int distantKinds = (1 << shd::VOLUME_HEIGHT_EXPONENTIAL) | (1 << shd::VOLUME_HEIGHT_LINEAR) | (1 << shd::VOLUME_DEPTH);
     k[SpecId::SPEC_DISTANT_FOG] = (kinds & distantKinds) != 0 && frame.froxelRange.y < frame.projection.w ? 1 : 0;
+    k[SpecId::SPEC_INFLUENCERS] = cs.influence.header.count.x > 0 ? 1 : 0;
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;
         for (size_t i = 0; i < cs.volumes.size(); ++i)
@@ -199,6 +200,10 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r[BufferId::volumes].mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
     if (!cs.lights.empty()) std::memcpy(r[BufferId::lights].mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));
+    std::memcpy(r[BufferId::influence].mapped, &cs.influence.header, sizeof(shd::InfluenceHeader));
+    if (!cs.influence.samples.empty())
+        std::memcpy(static_cast<char*>(r[BufferId::influence].mapped) + sizeof(shd::InfluenceHeader),
+                    cs.influence.samples.data(), cs.influence.samples.size() * sizeof(shd::InfluenceSample));
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));

@@ -77,7 +77,7 @@ std::string joinList(const List& items) {
 // How a wrong value is shown in a message: short, and never the whole of a big object.
 std::string describe(const json& v) {
     if (v.is_object()) return "an object";
-    if (v.is_array()) return "an array of " + std::to_string(v.size()) + " values";
+    if (v.is_array()) return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " value" : " values");
     std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
     return s.size() > 40 ? s.substr(0, 37) + "..." : s;
 }
@@ -623,6 +623,61 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
     return vol;
 }
 
+// "path": [{"time": s, "position": [x, y, z]}, ...]: at least 2 points in strictly increasing time.
+void readInfluencerPath(Ctx& c, Obj& o, KeyTrack& track) {
+    track.target = "position";
+    const json* list = o.get("path");
+    const std::string path = o.at("path");
+    if (!list) {
+        c.fail(path, "missing required key (at least 2 points {\"time\": s, \"position\": [x, y, z]})");
+        return;
+    }
+    if (!list->is_array() || list->size() < 2) {
+        c.fail(path, "expected an array of at least 2 points {\"time\": s, \"position\": [x, y, z]}, got " + describe(*list));
+        return;
+    }
+    for (size_t i = 0; i < list->size() && !c.failed(); ++i) {
+        Obj p(c, (*list)[i], indexed(path, i), "a path point");
+        if (!p.isObject()) return;
+        Keyframe k;
+        const json* time = p.get(keyOf(st::influencer_path_time));
+        const json* position = p.get(keyOf(st::influencer_path_position));
+        if (!time) c.fail(p.at(keyOf(st::influencer_path_time)), "missing required key (the point's scene time in s)");
+        else if (const std::optional<double> t = asNumber(c, *time, p.at(keyOf(st::influencer_path_time)), st::influencer_path_time))
+            k.time = static_cast<float>(*t);
+        if (!position) c.fail(p.at(keyOf(st::influencer_path_position)), "missing required key (the centre at that time in m)");
+        else if (const std::optional<glm::vec3> x = asVec3(c, *position, p.at(keyOf(st::influencer_path_position)), st::influencer_path_position))
+            k.value = *x;
+        if (!c.failed() && !track.keys.empty() && !(k.time > track.keys.back().time))
+            c.fail(p.at(keyOf(st::influencer_path_time)), withUnit(k.time, st::influencer_path_time) +
+                                                              " is not after the previous point's time (" +
+                                                              withUnit(track.keys.back().time, st::influencer_path_time) +
+                                                              "); a path's points must be in increasing time");
+        p.finish();
+        track.keys.push_back(k);
+    }
+}
+
+std::optional<Influencer> readInfluencer(Ctx& c, const json& v, const std::string& path) {
+    Obj o(c, v, path, "an influencer");
+    const std::optional<InfluencerType> type = readType<InfluencerType, 2>(c, o, st::influencer_type);
+    if (!type) return std::nullopt;
+    o.setWhere(std::string("a ") + toString(*type) + " influencer");
+    Influencer f;
+    f.type = *type;
+    readString(c, o, st::influencer_name, f.name);
+    readFloat(c, o, st::influencer_radius, f.radius);
+    if (*type == InfluencerType::Capsule) readFloat(c, o, st::influencer_length, f.length);
+    readFloat(c, o, st::influencer_strength, f.strength);
+    readFloat(c, o, st::influencer_half_life, f.wake_half_life_s);
+    readFloat(c, o, st::influencer_wake_step, f.wake_step_s);
+    readInt(c, o, st::influencer_wake_samples, f.wake_samples);
+    readEnum<Interpolation, 2>(c, o, st::influencer_path_interpolation, f.path.interpolation);
+    readInfluencerPath(c, o, f.path);
+    o.finish();
+    return f;
+}
+
 std::optional<Geometry> readGeometry(Ctx& c, const json& v, const std::string& path) {
     Obj o(c, v, path, "a geometry");
     const std::optional<GeometryType> type = readType<GeometryType, 3>(c, o, st::geometry_type);
@@ -772,6 +827,7 @@ void readScene(Ctx& c, const json& root, Scene& s) {
     readList(c, o, "volumes", s.volumes, readVolume);
     checkOneEncoding(c, s.volumes);
     readList(c, o, "geometry", s.geometry, readGeometry);
+    readList(c, o, "influencers", s.influencers, readInfluencer);
     o.finish();
 }
 
@@ -950,6 +1006,23 @@ ojson geometryJson(const Geometry& g) {
     return j;
 }
 
+ojson influencerJson(const Influencer& f) {
+    ojson j;
+    j["type"] = toString(f.type);
+    j["name"] = f.name;
+    j["radius"] = num(f.radius);
+    if (f.type == InfluencerType::Capsule) j["length"] = num(f.length);
+    j["strength"] = num(f.strength);
+    j["wake_half_life_s"] = num(f.wake_half_life_s);
+    j["wake_step_s"] = num(f.wake_step_s);
+    j["wake_samples"] = f.wake_samples;
+    j["path_interpolation"] = toString(f.path.interpolation);
+    ojson list = ojson::array();
+    for (const Keyframe& k : f.path.keys) list.push_back({{"time", num(k.time)}, {"position", vec(k.value)}});
+    j["path"] = list;
+    return j;
+}
+
 ojson froxelsJson(const FroxelOverrides& f) {
     ojson j = ojson::object();
     if (f.tile_px) j["tile_px"] = *f.tile_px;
@@ -980,6 +1053,8 @@ ojson sceneJson(const Scene& s) {
     j["lights"] = listJson(s.lights, lightJson);
     j["volumes"] = listJson(s.volumes, volumeJson);
     j["geometry"] = listJson(s.geometry, geometryJson);
+    // Written when present, so scenes without influencers are saved as before they existed.
+    if (!s.influencers.empty()) j["influencers"] = listJson(s.influencers, influencerJson);
     return j;
 }
 

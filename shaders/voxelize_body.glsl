@@ -4,6 +4,8 @@
 // takes that branch: scenes without vdb volumes (density textures) run a variant without that branch.
 // Dispatched over the froxels that can hold media only (core/media_region.h: frame.mediaOrigin*); the
 // frame clears the rest of the grid.
+#include "influence.glsl"
+
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
 MediaSample mediaAt(vec3 p) {
@@ -29,6 +31,7 @@ void main() {
     if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     MediaSample m = mediaAt(p);
+    if (SPEC_INFLUENCERS != 0) m = influencedMedia(m, p);
     imageStore(mediaScatteringG, id, vec4(m.sigmaS, mediaPhaseG(m)));
     imageStore(mediaExtinction, id, vec4(m.sigmaT, 0.0f));
     imageStore(mediaEmission, id, vec4(m.emission, 0.0f));

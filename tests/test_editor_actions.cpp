@@ -173,6 +173,43 @@ TEST(EditorActions, KeyedSceneKeepsItsKeysThroughEditsUndoAndSave) {
     fs::remove_all(dir);
 }
 
+// Influencers are edited like any object (docs/editor.md): add, set a setting and a path point,
+// hide, delete; each an undo step, and a bad path edit is refused with the reader's sentence. A key
+// list's interpolation switches with `interpolate`.
+TEST(EditorActions, InfluencersAndInterpolationAreUndoableEdits) {
+    Document doc = loadDefault();
+    const Scene before = doc.scene();
+    run(doc, "add influencer capsule walker");
+    ASSERT_EQ(doc.scene().influencers.size(), 1u);
+    EXPECT_EQ(doc.scene().influencers[0].type, InfluencerType::Capsule);
+    run(doc, "set influencers[0].radius 0.6");
+    run(doc, "set influencers[0].path[1].position 3 1 -1");
+    run(doc, "set influencers[0].path_interpolation smooth");
+    EXPECT_EQ(doc.scene().influencers[0].radius, 0.6f);
+    EXPECT_EQ(doc.scene().influencers[0].path.keys[1].value, glm::vec3(3.0f, 1.0f, -1.0f));
+    EXPECT_EQ(doc.scene().influencers[0].path.interpolation, Interpolation::Smooth);
+    Result<Action> bad = parseAction("set influencers[0].path[1].time -5");
+    ASSERT_TRUE(bad.ok());
+    const Result<void> refused = doc.apply(bad.value());
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("influencers[0].path[1].time"), std::string::npos) << refused.error().message;
+    run(doc, "hide influencer 0");
+    EXPECT_TRUE(doc.scene().influencers[0].hidden);
+    EXPECT_TRUE(visibleScene(doc.scene()).influencers.empty());
+    run(doc, "show influencer 0");
+    run(doc, "duplicate influencer 0");
+    EXPECT_EQ(doc.scene().influencers.size(), 2u);
+    run(doc, "delete influencer 1");
+    run(doc, "key volumes[0].medium.scattering 0");
+    run(doc, "key volumes[0].medium.scattering 1");
+    run(doc, "interpolate volumes[0].medium.scattering smooth");
+    EXPECT_EQ(doc.scene().volumes[0].keys[0].interpolation, Interpolation::Smooth);
+    run(doc, "undo");
+    EXPECT_EQ(doc.scene().volumes[0].keys[0].interpolation, Interpolation::Linear);
+    for (int i = 0; i < 10; ++i) run(doc, "undo");
+    EXPECT_TRUE(doc.scene() == before);
+}
+
 TEST(EditorActions, ActionsFormatAndParseBackExactly) {
     for (const Action& a : {Action{"rename", {"volume", "0", "a \"quoted\" name\\ # x"}}, Action{"undo", {}},
                             Action{"set", {"camera.position", "1", "-2.5", "3e-4"}}}) {

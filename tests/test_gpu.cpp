@@ -335,6 +335,30 @@ TEST_F(GpuTest, EllipsoidCylinderAndHeightFalloffMatchCpu) {
 
 // Past the froxel far the composite continues height and depth fog in closed form to the surface
 // or the camera far; here that part carries most of the fog.
+// An influencer and its wake crossing the box (shared/influence.h): the voxelize pass's factor is
+// the CPU's, and a scene without influencers runs the pipeline with it compiled out.
+TEST_F(GpuTest, InfluencerAndItsWakeMatchCpu) {
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.lights = {sun()};
+    Influencer f;
+    f.type = InfluencerType::Capsule;
+    f.radius = 1.0f;
+    f.length = 0.8f;
+    f.strength = 0.9f;
+    f.wake_half_life_s = 0.6f;
+    f.path.target = "position";
+    f.path.keys = {Keyframe{0.0f, glm::vec3(-1.5f, 1.0f, 0.0f)}, Keyframe{2.0f, glm::vec3(1.5f, 1.0f, 0.5f)}};
+    s.influencers = {f};
+    s.time_s = 1.4f;
+    ASSERT_GT(compileScene(s).influence.samples.size(), 2u);
+    expectMatchesCpu(s, "influencer + wake");
+    // The influencer shows: without it the image differs by far more than the GPU from the CPU (~1e-6).
+    Scene without = s;
+    without.influencers.clear();
+    EXPECT_GT(relativeMeanAbsError(renderFroxelCpu(without, smallRequest()).image, renderFroxelCpu(s, smallRequest()).image), 0.001);
+}
+
 TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
     Scene s = baseScene();
     s.camera.far = 400.0f;

@@ -399,7 +399,7 @@ const ErrorCase kErrorCases[] = {
     {R"({"brume_scene": 2})", "scene.json: brume_scene: unsupported version 2 (this build reads version 1)"},
     {R"({"brume_scene": "1"})", "scene.json: brume_scene: expected an integer, got \"1\""},
     {R"({"brume_scene": 1, "fog": {}})",
-     "scene.json: fog: unknown key; allowed in a scene: brume_scene, camera, render, froxels, temporal, ambient, lights, volumes, geometry"},
+     "scene.json: fog: unknown key; allowed in a scene: brume_scene, camera, render, froxels, temporal, ambient, lights, volumes, geometry, influencers"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "falloff": 1}]})",
      "scene.json: volumes[0].falloff: unknown key; allowed in a box volume: type, name, transform, edge_fade, height_falloff, density_texture, medium, keys"},
     {R"({"brume_scene": 1, "volumes": [{"type": "box", "medium": {"albedo": 1}}]})",
@@ -519,7 +519,7 @@ TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
          "translation, rotation_deg, scale"},
         {R"({"brume_scene": 1, "ambiant": [0, 0, 0]})",
          "scene.json: ambiant: unknown key (did you mean \"ambient\"?); allowed in a scene: brume_scene, camera, render, "
-         "froxels, temporal, ambient, lights, volumes, geometry"},
+         "froxels, temporal, ambient, lights, volumes, geometry, influencers"},
     };
     for (const ErrorCase& c : cases) EXPECT_EQ(parseError(c.text), c.message) << "input: " << c.text;
 }
@@ -651,7 +651,7 @@ TEST(SceneJsonKeyframes, BadKeysNameTheirPath) {
         {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": {"range": {"interpolation": "smooth"}}}]})",
          "scene.json: lights[0].keys.range.keys: missing required key (the list of keys {\"time\": s, \"value\": v})"},
         {R"({"brume_scene": 1, "lights": [{"type": "point", "keys": [1]}]})",
-         "scene.json: lights[0].keys: expected an object, got an array of 1 values"},
+         "scene.json: lights[0].keys: expected an object, got an array of 1 value"},
     };
     for (const ErrorCase& c : cases) EXPECT_EQ(parseError(c.text), c.message) << "input: " << c.text;
 }

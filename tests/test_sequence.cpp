@@ -156,6 +156,53 @@ TEST_F(Sequence, CtrlCLeavesNoHalfWrittenFrame) {
     EXPECT_LT(frames, 401u);
 }
 
+// An influencer crossing the box with its wake (docs/scene-format.md, Influencers): the wake is a
+// function of the scene time alone, so a frame rendered alone equals the same frame of a sequence, and
+// the influencer does change the frame.
+constexpr const char* kInfluencerScene = R"({"brume_scene": 1,
+  "camera": {"position": [0, 1, 4], "target": [0, 1, 0]},
+  "render": {"width": 40, "height": 24, "quality": "low"},
+  "temporal": {"enabled": true, "history_weight": 0.5},
+  "lights": [{"type": "point", "position": [0.5, 2, 0.5], "intensity": 20}],
+  "volumes": [{"type": "box", "transform": {"translation": [0, 1, 0], "scale": [3, 2, 3]},
+               "medium": {"scattering": [0.6, 0.6, 0.6]}}],
+  "influencers": [{"type": "sphere", "radius": 0.7, "strength": 1, "wake_half_life_s": 0.5,
+                   "path": [{"time": 0, "position": [-1.5, 1, 0]}, {"time": 1, "position": [1.5, 1, 0]}]}]})";
+
+// Froxels small enough to see a 0.7 m sphere (at 40x24 low a froxel column is wider than it).
+const std::string kInfluencerSize = "--width 160 --height 96 ";
+
+TEST_F(Sequence, AnInfluencerFrameRenderedAloneEqualsItInsideASequence) {
+    std::ofstream(dir_ / "scene.json") << kInfluencerScene;
+    fs::create_directories(dir_ / "seq");
+    fs::create_directories(dir_ / "one");
+    const SeqRun whole = brume(kInfluencerSize + "--sequence 0-6 --fps 10 -o seq/f_####.exr");
+    ASSERT_EQ(whole.exitCode, 0) << whole.err;
+    const SeqRun alone = brume(kInfluencerSize + "--sequence 5-5 --fps 10 -o one/f_####.exr");
+    ASSERT_EQ(alone.exitCode, 0) << alone.err;
+    ASSERT_FALSE(frame("one", 5).empty());
+    EXPECT_TRUE(frame("seq", 5) == frame("one", 5)) << "frame 5 alone differs from frame 5 of 0-6";
+    // Without the influencer frame 5 is another image.
+    std::string text = kInfluencerScene;
+    text = text.substr(0, text.find(",\n  \"influencers\"")) + "}";
+    std::ofstream(dir_ / "scene.json", std::ios::trunc) << text;
+    fs::create_directories(dir_ / "plain");
+    ASSERT_EQ(brume(kInfluencerSize + "--sequence 5-5 --fps 10 -o plain/f_####.exr").exitCode, 0);
+    EXPECT_FALSE(frame("plain", 5) == frame("one", 5));
+}
+
+TEST_F(Sequence, ABadInfluencerIsOneSentenceNamingItsPathAndExit2) {
+    std::string text = kInfluencerScene;
+    const std::string second = ", {\"time\": 1, \"position\": [1.5, 1, 0]}";
+    text.erase(text.find(second), second.size());  // a path of one point
+    std::ofstream(dir_ / "scene.json", std::ios::trunc) << text;
+    const SeqRun r = brume("-o bad.png");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("influencers[0].path: expected an array of at least 2 points"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
+}
+
 TEST_F(Sequence, BadOptionsAreOneSentenceAndExit2) {
     const std::pair<const char*, const char*> cases[] = {
         {"--sequence 5-2 -o f_####.png", "--sequence '5-2' is not a frame range A-B"},

@@ -85,7 +85,8 @@ Result<std::string> collectionOf(const std::string& kind) {
     if (kind == "volume") return std::string("volumes");
     if (kind == "light") return std::string("lights");
     if (kind == "geometry") return std::string("geometry");
-    return Error{"\"" + kind + "\" is not a kind of object: use volume, light or geometry."};
+    if (kind == "influencer") return std::string("influencers");
+    return Error{"\"" + kind + "\" is not a kind of object: use volume, light, geometry or influencer."};
 }
 
 // Whether `s` is well-formed UTF-8 (Unicode Table 3-7: no overlong forms, surrogates or values past
@@ -163,6 +164,8 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
     }
     for (size_t i = 0; i < n.lights.size() && i < current.lights.size(); ++i) n.lights[i].hidden = current.lights[i].hidden;
     for (size_t i = 0; i < n.geometry.size() && i < current.geometry.size(); ++i) n.geometry[i].hidden = current.geometry[i].hidden;
+    for (size_t i = 0; i < n.influencers.size() && i < current.influencers.size(); ++i)
+        n.influencers[i].hidden = current.influencers[i].hidden;
     return s;
 }
 
@@ -173,7 +176,7 @@ bool Document::dirty() const { return !(withoutViewState(scene_) == withoutViewS
 Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), saved_(scene_), path_(std::move(path)) {}
 
 bool Document::isDocumentVerb(const std::string& verb) {
-    for (const char* v : {"add", "delete", "duplicate", "rename", "hide", "show", "set", "begin", "end", "undo", "redo", "save", "key", "unkey"})
+    for (const char* v : {"add", "delete", "duplicate", "rename", "hide", "show", "set", "begin", "end", "undo", "redo", "save", "key", "unkey", "interpolate"})
         if (verb == v) return true;
     return false;
 }
@@ -189,7 +192,7 @@ Result<void> Document::apply(const Action& a) {
     if (a.verb == "hide" || a.verb == "show") return hide(a.verb, a.args);
     if (a.verb == "set") return set(a.args);
     if (a.verb == "save") return save(a.args);
-    if (a.verb == "key" || a.verb == "unkey") return key(a.verb, a.args);
+    if (a.verb == "key" || a.verb == "unkey" || a.verb == "interpolate") return key(a.verb, a.args);
     if (!a.args.empty()) return usage(a.verb, "(no arguments)");
     if (a.verb == "begin") {
         if (groupDepth_++ == 0) groupSnapshotTaken_ = false;
@@ -260,7 +263,7 @@ void Document::followFolder() {
 }
 
 Result<void> Document::add(const std::vector<std::string>& a) {
-    if (a.size() < 2 || a.size() > 4) return usage("add", "volume|light|geometry TYPE [NAME]");
+    if (a.size() < 2 || a.size() > 4) return usage("add", "volume|light|geometry|influencer TYPE [NAME]");
     const std::string name = a.size() > 2 ? a[2] : a[1];
     Scene next = scene_;
     if (a[0] == "volume") {
@@ -296,6 +299,15 @@ Result<void> Document::add(const std::vector<std::string>& a) {
         else if (a[1] != "plane") return Error{"\"" + a[1] + "\" is not a geometry type: use plane, box or sphere."};
         g.name = name;
         next.geometry.push_back(g);
+    } else if (a[0] == "influencer") {
+        Influencer f;
+        if (a[1] == "capsule") f.type = InfluencerType::Capsule;
+        else if (a[1] != "sphere") return Error{"\"" + a[1] + "\" is not an influencer type: use sphere or capsule."};
+        // A path across the origin over two seconds, to be moved with the gizmo or edited.
+        f.path.target = "position";
+        f.path.keys = {Keyframe{0.0f, glm::vec3(-2.0f, 1.0f, 0.0f)}, Keyframe{2.0f, glm::vec3(2.0f, 1.0f, 0.0f)}};
+        f.name = name;
+        next.influencers.push_back(f);
     } else {
         return collectionOf(a[0]).error();
     }
@@ -319,11 +331,12 @@ Result<void> editList(std::vector<T>& list, const std::string& verb, size_t i) {
 
 Result<void> Document::removeOrDuplicate(const std::string& verb, const std::vector<std::string>& a) {
     size_t i = 0;
-    if (a.size() != 2 || !parseIndex(a[1], i)) return usage(verb, "volume|light|geometry INDEX");
+    if (a.size() != 2 || !parseIndex(a[1], i)) return usage(verb, "volume|light|geometry|influencer INDEX");
     Scene next = scene_;
     Result<void> r = a[0] == "volume" ? editList(next.volumes, verb, i)
                      : a[0] == "light" ? editList(next.lights, verb, i)
                      : a[0] == "geometry" ? editList(next.geometry, verb, i)
+                     : a[0] == "influencer" ? editList(next.influencers, verb, i)
                                           : Result<void>(collectionOf(a[0]).error());
     if (!r) return r;
     commit(std::move(next));
@@ -340,12 +353,13 @@ Result<void> setHidden(std::vector<T>& list, size_t i, bool hidden) {
 
 Result<void> Document::hide(const std::string& verb, const std::vector<std::string>& a) {
     size_t i = 0;
-    if (a.size() != 2 || !parseIndex(a[1], i)) return usage(verb, "volume|light|geometry INDEX");
+    if (a.size() != 2 || !parseIndex(a[1], i)) return usage(verb, "volume|light|geometry|influencer INDEX");
     Scene next = scene_;
     const bool h = verb == "hide";
     Result<void> r = a[0] == "volume" ? setHidden(next.volumes, i, h)
                      : a[0] == "light" ? setHidden(next.lights, i, h)
                      : a[0] == "geometry" ? setHidden(next.geometry, i, h)
+                     : a[0] == "influencer" ? setHidden(next.influencers, i, h)
                                           : Result<void>(collectionOf(a[0]).error());
     if (!r) return r;
     if (next == scene_) return {};  // hiding a hidden object is not an undo step
@@ -355,7 +369,7 @@ Result<void> Document::hide(const std::string& verb, const std::vector<std::stri
 
 Result<void> Document::rename(const std::vector<std::string>& a) {
     size_t i = 0;
-    if (a.size() != 3 || !parseIndex(a[1], i)) return usage("rename", "volume|light|geometry INDEX NAME");
+    if (a.size() != 3 || !parseIndex(a[1], i)) return usage("rename", "volume|light|geometry|influencer INDEX NAME");
     Result<std::string> c = collectionOf(a[0]);
     if (!c) return c.error();
     return set({c.value() + "[" + a[1] + "].name", a[2]});

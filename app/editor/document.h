@@ -46,8 +46,8 @@ public:
     bool canRedo() const { return !redo_.empty(); }
 
     // Applies one document action; an error leaves the document unchanged. Verbs:
-    //   add volume|light|geometry TYPE [NAME]     (vdb: add volume vdb NAME FILE)
-    //   delete|duplicate KIND INDEX, rename KIND INDEX NAME   (KIND: volume, light, geometry)
+    //   add volume|light|geometry|influencer TYPE [NAME]     (vdb: add volume vdb NAME FILE)
+    //   delete|duplicate KIND INDEX, rename KIND INDEX NAME   (KIND: volume, light, geometry, influencer)
     //   hide|show KIND INDEX   (editor view state: undoable, never saved, see Volume::hidden)
     //   set PATH VALUE...   (PATH like volumes[0].transform.translation; vec3 takes 3 numbers)
     //   begin, end          (everything in between is one undo step)
@@ -55,6 +55,7 @@ public:
     //   key PATH SECONDS    (PATH like volumes[0].medium.scattering: a key with the setting's
     //                       current value at that scene time; replaces a key at the same time)
     //   unkey PATH SECONDS  (removes that key; the last key of a setting removes its track)
+    //   interpolate PATH linear|smooth   (how that keyed setting moves between its keys)
     Result<void> apply(const Action& action);
     static bool isDocumentVerb(const std::string& verb);
 
@@ -77,6 +78,7 @@ private:
     Result<void> set(const std::vector<std::string>& a);
     Result<void> save(const std::vector<std::string>& a);
     Result<void> key(const std::string& verb, const std::vector<std::string>& a);  // key_edit.cpp
+    Result<void> interpolate(const std::vector<std::string>& a);                   // key_edit.cpp
     void commit(Scene next);
     void undo();
     void redo();

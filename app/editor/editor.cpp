@@ -63,6 +63,7 @@ Result<void> Editor::dispatch(const Action& a) {
         const Scene& s = doc_.scene();
         const size_t n = selection_.kind == Kind::Volume ? s.volumes.size()
                          : selection_.kind == Kind::Light ? s.lights.size()
+                         : selection_.kind == Kind::Influencer ? s.influencers.size()
                                                           : s.geometry.size();
         if (selection_.kind != Kind::None && selection_.index >= n) selection_.kind = Kind::None;
         return r;
@@ -70,10 +71,10 @@ Result<void> Editor::dispatch(const Action& a) {
     double v = 0.0;
     if (a.verb == "select") {
         if (a.args.size() == 1 && a.args[0] == "none") return selection_.kind = Kind::None, Result<void>();
-        if (a.args.size() != 2 || !number(a.args[1], v) || v < 0) return Error{"select takes: select volume|light|geometry INDEX."};
+        if (a.args.size() != 2 || !number(a.args[1], v) || v < 0) return Error{"select takes: select volume|light|geometry|influencer INDEX."};
         const Kind k = a.args[0] == "volume" ? Kind::Volume : a.args[0] == "light" ? Kind::Light
-                     : a.args[0] == "geometry" ? Kind::Geometry : Kind::None;
-        if (k == Kind::None) return Error{"select takes: select volume|light|geometry INDEX."};
+                     : a.args[0] == "geometry" ? Kind::Geometry : a.args[0] == "influencer" ? Kind::Influencer : Kind::None;
+        if (k == Kind::None) return Error{"select takes: select volume|light|geometry|influencer INDEX."};
         selection_ = {k, static_cast<size_t>(v)};
         return {};
     }
@@ -196,7 +197,8 @@ Result<void> Editor::camera(const Action& a) {
 }
 
 static const char* kindWord(Kind k) {
-    return k == Kind::Volume ? "volume" : k == Kind::Light ? "light" : k == Kind::Geometry ? "geometry" : "none";
+    return k == Kind::Volume ? "volume" : k == Kind::Light ? "light" : k == Kind::Geometry ? "geometry"
+         : k == Kind::Influencer ? "influencer" : "none";
 }
 
 // fly RIGHT UP FORWARD [m], look YAW PITCH [deg], frame (the selection), pick U V (window

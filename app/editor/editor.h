@@ -20,7 +20,7 @@
 
 namespace brume::editor {
 
-enum class Kind { None, Volume, Light, Geometry };
+enum class Kind { None, Volume, Light, Geometry, Influencer };
 
 struct Selection {
     Kind kind = Kind::None;
@@ -38,7 +38,7 @@ public:
     Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale = 1.0);
 
     // Every action goes through here. Editor verbs (the rest are Document's):
-    //   select volume|light|geometry INDEX | select none
+    //   select volume|light|geometry|influencer INDEX | select none
     //   orbit YAW_DEG PITCH_DEG, pan RIGHT UP (fractions of the target distance), zoom FACTOR
     //   fly RIGHT UP FORWARD [m], look YAW_DEG PITCH_DEG (fly camera), frame (the selection),
     //   pick U V (select the volume or light under window fractions U, V from the top-left)

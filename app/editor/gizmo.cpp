@@ -9,6 +9,7 @@
 
 #include <imgui.h>
 
+#include "core/influence.h"
 #include "core/settings.h"
 #include "editor.h"
 #include "view.h"
@@ -244,11 +245,71 @@ void outline(const View& v, const Volume& vol) {
     }
 }
 
+// The influencer's path (sampled over its points' time span and held beyond), a dot per point, and
+// its shape at the scene time: a ring of its radius facing the camera (a capsule: two, ends of its axis).
+void drawInfluencer(const View& v, const Influencer& f, float time) {
+    const ImU32 pathColor = IM_COL32(120, 200, 255, 200);
+    if (!f.path.keys.empty()) {
+        const float t0 = f.path.keys.front().time, t1 = f.path.keys.back().time;
+        constexpr int kSteps = 96;
+        std::optional<ImVec2> prev;
+        for (int k = 0; k <= kSteps; ++k) {
+            const float t = t0 + (t1 - t0) * static_cast<float>(k) / kSteps;
+            const std::optional<ImVec2> p = v.px(influencerPosition(f, t));
+            if (p && prev) v.draw->AddLine(*prev, *p, pathColor, 1.5f);
+            prev = p;
+        }
+        for (const Keyframe& key : f.path.keys)
+            if (const std::optional<ImVec2> p = v.px(key.value)) v.draw->AddCircleFilled(*p, 3.5f, pathColor);
+    }
+    const glm::vec3 centre = influencerPosition(f, time);
+    const glm::vec3 right = glm::normalize(glm::cross(v.cam->target - v.cam->position, v.cam->up));
+    const glm::vec3 up = glm::normalize(glm::cross(right, v.cam->target - v.cam->position));
+    const float half = f.type == InfluencerType::Capsule ? 0.5f * f.length : 0.0f;
+    for (float end : {-half, half}) {
+        std::vector<ImVec2> ring;
+        for (int k = 0; k <= kRingSegments; ++k) {
+            const float a = 6.2831853f * static_cast<float>(k) / kRingSegments;
+            const glm::vec3 p = centre + glm::vec3(0.0f, end, 0.0f) + (right * std::cos(a) + up * std::sin(a)) * f.radius;
+            if (const std::optional<ImVec2> q = v.px(p)) ring.push_back(*q);
+        }
+        v.draw->AddPolyline(ring.data(), static_cast<int>(ring.size()), kCentre, 0, 1.5f);
+        if (half == 0.0f) break;
+    }
+}
+
+// The influencer's gizmo: translate moves the path point nearest the scene time (an undoable set of
+// influencers[i].path[k].position); the handles sit on that point.
+bool influencerGizmo(Editor& e, GizmoState& g, const Influencer& f, size_t index, double now) {
+    if (f.path.keys.empty()) return false;
+    const float time = static_cast<float>(e.sceneTime().seconds());
+    size_t nearest = 0;
+    for (size_t k = 1; k < f.path.keys.size(); ++k)
+        if (std::abs(f.path.keys[k].time - time) < std::abs(f.path.keys[nearest].time - time)) nearest = k;
+    const std::string path = "influencers[" + std::to_string(index) + "].path[" + std::to_string(nearest) + "].position";
+    const std::optional<glm::vec3> pivot = currentVec3(e, path);
+    const std::optional<View> v = pivot ? viewOf(e.doc().scene().camera, *pivot, g.axis >= 0) : std::nullopt;
+    if (!v) {
+        if (g.axis >= 0) (void)e.run("end");
+        g.axis = -1;
+        return false;
+    }
+    drawInfluencer(*v, f, time);
+    if (e.gizmoMode != GizmoMode::Translate) return false;
+    return translate(e, g, *v, path, now);
+}
+
 }  // namespace
 
 bool transformGizmo(Editor& e, GizmoState& g, double now) {
     const Selection sel = e.selection();
     const Scene& scene = e.doc().scene();
+    if (sel.kind == Kind::Influencer) {
+        if (sel.index < scene.influencers.size()) return influencerGizmo(e, g, scene.influencers[sel.index], sel.index, now);
+        if (g.axis >= 0) (void)e.run("end");
+        g.axis = -1;
+        return false;
+    }
     const std::string kind = sel.kind == Kind::None ? "" : kindWord(sel.kind);
     const std::optional<glm::vec3> pivot = kind.empty() ? std::nullopt : currentVec3(e, positionPath(scene, kind, sel.index));
     const std::optional<View> v = pivot ? viewOf(scene.camera, *pivot, g.axis >= 0) : std::nullopt;

@@ -50,6 +50,7 @@ bool parseSeconds(const std::string& s, float& out) {
 }  // namespace
 
 Result<void> Document::key(const std::string& verb, const std::vector<std::string>& a) {
+    if (verb == "interpolate") return interpolate(a);
     float time = 0.0f;
     if (a.size() != 2 || !parseSeconds(a[1], time))
         return Error{"The action \"" + verb + "\" takes: " + verb + " volumes[i].SETTING|lights[i].SETTING SECONDS."};
@@ -93,6 +94,27 @@ Result<void> Document::key(const std::string& verb, const std::vector<std::strin
     else track->keys.insert(at, f);
     // The reader has the last word (ranges, keyable targets), as for every other edit.
     if (Result<Scene> check = parseScene(sceneToJson(next), "edit"); !check) return check.error();
+    commit(std::move(next));
+    return {};
+}
+
+// interpolate PATH linear|smooth: how a keyed setting moves between its keys (one undo step).
+Result<void> Document::interpolate(const std::vector<std::string>& a) {
+    if (a.size() != 2 || (a[1] != "linear" && a[1] != "smooth"))
+        return Error{"The action \"interpolate\" takes: interpolate volumes[i].SETTING|lights[i].SETTING linear|smooth."};
+    Result<KeyPath> path = parseKeyPath(a[0]);
+    if (!path) return path.error();
+    const KeyPath& k = path.value();
+    Scene next = scene_;
+    const size_t count = k.light ? next.lights.size() : next.volumes.size();
+    if (k.index >= count)
+        return Error{a[0] + ": there is no " + (k.light ? "light " : "volume ") + std::to_string(k.index) + "."};
+    std::vector<KeyTrack>& tracks = k.light ? next.lights[k.index].keys : next.volumes[k.index].keys;
+    auto track = std::find_if(tracks.begin(), tracks.end(), [&](const KeyTrack& t) { return t.target == k.target; });
+    if (track == tracks.end()) return Error{a[0] + ": this setting has no keys."};
+    const Interpolation mode = a[1] == "smooth" ? Interpolation::Smooth : Interpolation::Linear;
+    if (track->interpolation == mode) return {};
+    track->interpolation = mode;
     commit(std::move(next));
     return {};
 }

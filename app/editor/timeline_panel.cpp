@@ -83,6 +83,14 @@ void trackRows(Editor& e, const Keyed& k, double length, float width, double now
     for (const KeyTrack& track : *k.tracks) {
         ImGui::PushID(track.target.c_str());
         const ImVec2 row = ImGui::GetCursorScreenPos();
+        // The key list's interpolation: a click switches linear <-> smooth (one undo step).
+        const bool smooth = track.interpolation == Interpolation::Smooth;
+        if (ImGui::SmallButton(smooth ? "S" : "L"))
+            runOrNotify(e, "interpolate " + k.prefix + "." + track.target + (smooth ? " linear" : " smooth"), now);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s: %s between keys; click for %s", track.target.c_str(), smooth ? "smooth (Catmull-Rom)" : "linear",
+                              smooth ? "linear" : "smooth");
+        ImGui::SameLine();
         ImGui::TextUnformatted(track.target.c_str());
         ImGui::SameLine(kLabelWidth);
         const ImVec2 a = ImGui::GetCursorScreenPos();
@@ -114,6 +122,8 @@ double lastKeyTime(const Scene& s) {
         for (const KeyTrack& k : v.keys) t = std::max(t, static_cast<double>(k.keys.back().time));
     for (const Light& l : s.lights)
         for (const KeyTrack& k : l.keys) t = std::max(t, static_cast<double>(k.keys.back().time));
+    for (const Influencer& f : s.influencers)
+        if (!f.path.keys.empty()) t = std::max(t, static_cast<double>(f.path.keys.back().time));
     return t;
 }
 

@@ -32,8 +32,12 @@ std::string fmt(double v) {
     return buf;
 }
 
-const char* kindName(Kind k) { return k == Kind::Volume ? "volume" : k == Kind::Light ? "light" : "geometry"; }
-const char* collectionName(Kind k) { return k == Kind::Volume ? "volumes" : k == Kind::Light ? "lights" : "geometry"; }
+const char* kindName(Kind k) {
+    return k == Kind::Volume ? "volume" : k == Kind::Light ? "light" : k == Kind::Influencer ? "influencer" : "geometry";
+}
+const char* collectionName(Kind k) {
+    return k == Kind::Volume ? "volumes" : k == Kind::Light ? "lights" : k == Kind::Influencer ? "influencers" : "geometry";
+}
 
 // The part of a setting's path below the element, if the setting applies to `collection` elements
 // of `type`: "volumes[type=box].edge_fade" -> "edge_fade" for a box volume.
@@ -136,6 +140,21 @@ void settingWidget(Editor& e, const Setting& s, const std::string& path, const j
     tooltip(s);
 }
 
+// An influencer's path points: each one's time and position, edited like any setting (undoable; a
+// time out of order is refused with the reader's sentence). The gizmo moves the point nearest the
+// scene time (gizmo.cpp).
+void influencerPath(Editor& e, const json& obj, const std::string& prefix, double now) {
+    if (!obj.contains("path") || !obj["path"].is_array()) return;
+    ImGui::Separator();
+    ImGui::TextUnformatted("path");
+    const json& path = obj["path"];
+    for (size_t k = 0; k < path.size(); ++k) {
+        const std::string at = prefix + "path[" + std::to_string(k) + "].";
+        if (path[k].contains("time")) settingWidget(e, settings::influencer_path_time, at + "time", path[k]["time"], now);
+        if (path[k].contains("position")) settingWidget(e, settings::influencer_path_position, at + "position", path[k]["position"], now);
+    }
+}
+
 void inspector(Editor& e, double now) {
     ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 390, 30), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380, 420), ImGuiCond_FirstUseEver);
@@ -159,12 +178,14 @@ void inspector(Editor& e, double now) {
             if (!rel) continue;
             if (const json* v = at(obj, *rel)) settingWidget(e, *s, prefix + *rel, *v, now);
         }
+        if (sel.kind == Kind::Influencer) influencerPath(e, obj, prefix, now);
     }
     ImGui::End();
 }
 
 bool isHidden(const Scene& s, Kind kind, size_t i) {
-    return kind == Kind::Volume ? s.volumes[i].hidden : kind == Kind::Light ? s.lights[i].hidden : s.geometry[i].hidden;
+    return kind == Kind::Volume ? s.volumes[i].hidden : kind == Kind::Light ? s.lights[i].hidden
+         : kind == Kind::Influencer ? s.influencers[i].hidden : s.geometry[i].hidden;
 }
 
 void outlinerList(Editor& e, Kind kind, const std::vector<std::string>& names, const char* types, double now) {
@@ -196,7 +217,8 @@ void outlinerList(Editor& e, Kind kind, const std::vector<std::string>& names, c
             if (ImGui::MenuItem(t.c_str())) {
                 runOrNotify(e, "add " + std::string(kn) + " " + t, now);
                 const Scene& s = e.doc().scene();
-                const size_t n = kind == Kind::Volume ? s.volumes.size() : kind == Kind::Light ? s.lights.size() : s.geometry.size();
+                const size_t n = kind == Kind::Volume ? s.volumes.size() : kind == Kind::Light ? s.lights.size()
+                               : kind == Kind::Influencer ? s.influencers.size() : s.geometry.size();
                 runOrNotify(e, "select " + std::string(kn) + " " + std::to_string(n - 1), now);
             }
             start = bar + 1;
@@ -221,6 +243,7 @@ void outliner(Editor& e, double now) {
     outlinerList(e, Kind::Volume, labels(s.volumes), "box|ellipsoid|cylinder|height|depth", now);
     outlinerList(e, Kind::Light, labels(s.lights), "directional|point|spot", now);
     outlinerList(e, Kind::Geometry, labels(s.geometry), "plane|box|sphere", now);
+    outlinerList(e, Kind::Influencer, labels(s.influencers), "sphere|capsule", now);
     ImGui::End();
 }
 

@@ -120,6 +120,7 @@ Scene visibleScene(const Scene& scene) {
     dropHidden(s.volumes);
     dropHidden(s.lights);
     dropHidden(s.geometry);
+    dropHidden(s.influencers);
     return s;
 }
 
@@ -127,6 +128,7 @@ Scene withoutViewState(Scene scene) {
     for (Volume& v : scene.volumes) v.hidden = false;
     for (Light& l : scene.lights) l.hidden = false;
     for (Geometry& g : scene.geometry) g.hidden = false;
+    for (Influencer& f : scene.influencers) f.hidden = false;
     return scene;
 }
 

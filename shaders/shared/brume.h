@@ -8,6 +8,7 @@
 #include "media.h"
 #include "vdb.h"
 #include "density_texture.h"
+#include "influence.h"
 #include "lighting.h"
 #include "glow.h"
 #include "integrate.h"

@@ -31,7 +31,8 @@
     X(sunShadowMap, 8, STORAGE, std430, readonly buffer, SunShadowBlock, SunShadowFit sunShadowFit; float sunShadowDepth[];) \
     X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];) \
     X(exactList, 23, STORAGE_INDIRECT, std430, buffer, ExactListBlock, ExactListHeader exactList; uint exactFroxels[];) \
-    X(distantTable, 24, STORAGE_GPU, std430, buffer, DistantTableBlock, vec4 distantTable[];)
+    X(distantTable, 24, STORAGE_GPU, std430, buffer, DistantTableBlock, vec4 distantTable[];) \
+    X(influence, 25, STORAGE, std430, readonly buffer, InfluenceBlock, InfluenceHeader influenceHeader; InfluenceSample influenceSamples[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -50,6 +51,8 @@
 //                       the light pass left to the exact pass, and that pass's indirect dispatch
 //   distantTable        vec4[]: the distant fog per tile corner and depth (distant_table.h), written
 //                       by the distant fog pass, read by the composite
+//   influence           InfluenceHeader, then InfluenceSample[] (influence.h): the influencers and
+//                       their wakes at the scene time (core/influence.h), read by voxelize
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
