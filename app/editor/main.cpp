@@ -228,6 +228,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         int w = 0, h = 0;
         glfwGetFramebufferSize(presenter.window(), &w, &h);
         const uint64_t rendersBefore = editor.renders();
+        const double renderStart = seconds();
         if (w > 0 && h > 0) {
             if (Result<void> r = presenter.waitForFrame(); !r) return fail(r.error().message, 1);
             if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) {
@@ -235,6 +236,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
                 std::fprintf(stderr, "%s\n", r.error().message.c_str());  // also in logs and tests
             }
         }
+        const double renderEnd = seconds();
         ++frame;
         const bool last = o.frames > 0 && frame >= o.frames;
         const bool capture = (last && !o.screenshot.empty()) || !editor.screenshotRequest.empty();
@@ -264,8 +266,13 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
                 stats.addSettle((end - lastCoarseStart) * 1000.0);
                 lastCoarseStart = -1.0;
             }
-            stats.add(kind, editor.frameMs, rendered ? editor.lastRender()->passes : std::vector<gpu::PassTiming>{},
-                      presentMs);
+            // Besides the GPU passes, the frame's CPU-side parts: input, script and UI before the
+            // render; the render call (waiting for the previous window frame, compiling the scene,
+            // recording, submitting, waiting for the device).
+            std::vector<gpu::PassTiming> parts = rendered ? editor.lastRender()->passes : std::vector<gpu::PassTiming>{};
+            parts.push_back({"before render (cpu)", (renderStart - (end - editor.frameMs / 1000.0)) * 1000.0});
+            parts.push_back({"render call", (renderEnd - renderStart) * 1000.0});
+            stats.add(kind, editor.frameMs, parts, presentMs);
         }
         if (last) {
             if (frame > 1) std::printf("frames: %d, mean frame time (after the first): %.1f ms\n", frame, totalMs / (frame - 1));
