@@ -159,6 +159,7 @@ inline constexpr Setting cli_time         {"--time", K::Number, "s", -kBig, kBig
 inline constexpr Setting cli_fps          {"--fps", K::Number, "1/s", 1e-3, 1000, {24}, "", "Frame rate of --frames: frame n of N is at time - (N - 1 - n) / fps, so the last (written) frame is at --time."};
 // brume-editor options.
 inline constexpr Setting editor_interactive_scale {"--interactive-scale", K::Number, "", 0.1, 1, {0.5}, "", "Viewport resolution while the user drags or moves the camera, as a fraction of the window's (rendered at the low preset, then upscaled); 1 renders every frame at full resolution and the chosen preset."};
+inline constexpr Setting editor_frame_budget_ms {"--frame-budget-ms", K::Number, "ms", 0, 1000, {50}, "", "Frame time the viewport aims at while the user interacts: each coarse frame's resolution (at most --interactive-scale of the window's, at least 0.1) follows the measured time of the previous one; 0 keeps it at --interactive-scale."};
 inline constexpr Setting editor_autosave_seconds {"--autosave-seconds", K::Number, "s", 0.1, 3600, {5}, "", "Longest time unsaved changes wait before the editor writes them to its recovery file."};
 inline constexpr Setting cli_vdb_memory   {"--vdb-memory-mb", K::Integer, "MiB", 1, 1048576, {4096}, "", "Largest OpenVDB grid accepted, in memory and as NanoVDB (GPU); bigger grids are refused."};
 // brume noise options.

@@ -338,6 +338,60 @@ TEST(EditorInteraction, CoarseWhileTheDocumentMovesFullWithARestartAtRest) {
     EXPECT_FALSE(off.plan(2, false, Quality::Medium, 320, 180).restartHistory);
 }
 
+// The coarse frames' scale follows the measured frame time toward the budget: a frame over budget
+// shrinks the next coarse image (pixels ~ budget / time, at most halved a step), one well under it
+// grows it back up to the user's --interactive-scale, one inside the band keeps it (each size change
+// reallocates); the first frame of a new size is not a measurement (steady false). The scale
+// learnt is kept for the next drag; the froxel grid shrinks more slowly than the image.
+TEST(EditorInteraction, CoarseScaleFollowsTheFrameTimeWithinTheBudget) {
+    Interaction in(0.5, 50.0);
+    in.plan(1, false, Quality::High, 1280, 720);
+    ViewPlan p = in.plan(2, true, Quality::High, 1280, 720);
+    EXPECT_TRUE(p.coarse);
+    EXPECT_DOUBLE_EQ(p.scale, 0.5);
+    EXPECT_FALSE(p.steady);  // the first coarse frame after a full one
+    p = in.plan(3, true, Quality::High, 1280, 720);
+    EXPECT_TRUE(p.steady);
+    in.measured(160.0);  // 3.2x the budget: pixels x 0.25 (80% of the budget), clamped to halving
+    p = in.plan(4, true, Quality::High, 1280, 720);
+    EXPECT_NEAR(p.scale, 0.35, 0.02);
+    EXPECT_LT(p.width, 640);
+    EXPECT_NEAR(static_cast<double>(p.width) / p.height, 16.0 / 9.0, 0.02);
+    EXPECT_FALSE(p.steady);
+    const double shrunk = p.scale;
+    in.measured(45.0);  // inside the band (60%..100% of the budget): no change
+    EXPECT_DOUBLE_EQ(in.plan(5, true, Quality::High, 1280, 720).scale, shrunk);
+    in.measured(60.0);  // just over: a little smaller, on the 1/40 steps
+    p = in.plan(6, true, Quality::High, 1280, 720);
+    EXPECT_LT(p.scale, shrunk);
+    EXPECT_NEAR(p.scale * 40.0, std::round(p.scale * 40.0), 1e-9);
+    // Never below the setting's minimum, however slow.
+    for (int i = 0; i < 20; ++i) in.measured(10000.0);
+    EXPECT_DOUBLE_EQ(in.scale(), Interaction::minScale());
+    // At rest: the preset at full size, whatever was learnt; the next drag starts where it left.
+    p = in.plan(7, false, Quality::High, 1280, 720);
+    p = in.plan(7, false, Quality::High, 1280, 720);
+    EXPECT_FALSE(p.coarse);
+    EXPECT_EQ(p.width, 1280);
+    EXPECT_DOUBLE_EQ(in.plan(8, true, Quality::High, 1280, 720).scale, Interaction::minScale());
+    // Fast frames grow it back, to the user's scale and no further.
+    for (int i = 0; i < 20; ++i) in.measured(5.0);
+    EXPECT_DOUBLE_EQ(in.scale(), 0.5);
+    // No budget: the scale stays where the user put it.
+    Interaction fixed(0.5, 0.0);
+    fixed.measured(10000.0);
+    EXPECT_DOUBLE_EQ(fixed.scale(), 0.5);
+    // The froxel grid of a coarse frame: the low grid of half the window at scale 0.5, its columns
+    // going with the square root of the scale below (the image's with the scale itself).
+    for (double s : {0.1, 0.25, 0.35, 0.5}) {
+        const int w = static_cast<int>(std::lround(1280 * s));
+        const int tile = coarseTilePx(16, s);
+        EXPECT_NEAR((w + tile - 1) / tile, 40 * std::sqrt(s / 0.5), 40 * std::sqrt(s / 0.5) * 0.15) << s;
+    }
+    EXPECT_EQ(coarseTilePx(16, 0.5), 16);
+    EXPECT_GE(coarseTilePx(1, 0.1), 1);
+}
+
 // Hiding is an undoable edit of view state: the viewport renders the scene without the object, a
 // file never holds it, and it does not make the scene dirty.
 TEST(EditorView, HideIsUndoableNotRenderedAndNotSaved) {

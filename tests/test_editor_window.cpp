@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -94,24 +95,36 @@ TEST(EditorWindow, ScreenshotOfTheViewportMatchesTheHeadlessRender) {
 }
 
 // Scale while interacting (app/editor/accumulation.h Interaction): the frames of a drag render
-// coarse (low, half size), and once the drag ends the view restarts at its preset and full size,
-// so its Nth frame at rest is `brume render --frames N` of the moved scene.
+// coarse (low, at most half size, smaller when the frames miss the budget: here 1 ms, which every
+// frame misses, so the scale must shrink), and once the drag ends the view restarts at its preset
+// and full size, so its Nth frame at rest is `brume render --frames N` of the moved scene, whatever
+// size and froxel grid the coarse frames had.
 TEST(EditorWindow, CoarseWhileDraggingThenAtRestEqualsTheHeadlessRender) {
     REQUIRE_XVFB();
     const fs::path dir = tempDir("interactive");
-    // One action per frame: frames 1-3 are inside the drag (coarse), 4-7 rest (save changes nothing).
+    // One action per frame: frames 1-5 are inside the drag (coarse), 6-9 rest (save changes nothing).
     std::ofstream(dir / "drag.txt") << "begin\n"
                                        "set volumes[0].transform.translation 1.5 1.2 -1.2\n"
+                                       "set volumes[0].transform.translation 1.3 1.2 -1.1\n"
+                                       "set volumes[0].transform.translation 1.2 1.3 -1.1\n"
                                        "set volumes[0].transform.translation 1.0 1.3 -1.0\n"
                                        "end\n"
                                        "save \"" << (dir / "moved.json").string() << "\"\n";
     std::string log;
     ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + " --width 160 --height 90 --quality medium --validation" +
-                 " --hide-ui --bench --frames 7 --script " + quoted((dir / "drag.txt").string()) + " --screenshot " +
-                 quoted((dir / "editor.png").string()), &log), 0) << log;
-    // --bench counts the kinds of frames after the first: frames 2 and 3 were coarse, 4-7 at rest.
-    EXPECT_NE(log.find("coarse     2 frames"), std::string::npos) << log;
+                 " --frame-budget-ms 1 --hide-ui --bench --frames 9 --script " + quoted((dir / "drag.txt").string()) +
+                 " --screenshot " + quoted((dir / "editor.png").string()), &log), 0) << log;
+    // --bench counts the kinds of frames after the first: frames 2-5 were coarse, 6-9 at rest.
+    EXPECT_NE(log.find("coarse     4 frames"), std::string::npos) << log;
     EXPECT_NE(log.find("rest       4 frames"), std::string::npos) << log;
+    // The scale adapted: frame 3 measured itself over budget, so frame 4 (or 5) was smaller.
+    double first = 0.0, last = 0.0;
+    const size_t at = log.find("coarse scale: first");
+    ASSERT_NE(at, std::string::npos) << log;
+    ASSERT_EQ(std::sscanf(log.c_str() + at, "coarse scale: first %lf, last %lf", &first, &last), 2) << log;
+    EXPECT_DOUBLE_EQ(first, 0.5);
+    EXPECT_LT(last, first);
+    EXPECT_NE(log.find("settle     1 times"), std::string::npos) << log;
     ASSERT_EQ(sh(std::string(BRUME_EXE) + " render " + quoted((dir / "moved.json").string()) + " -o " +
                  quoted((dir / "cli.png").string()) + " --width 160 --height 90 --quality medium --frames 4", &log), 0)
         << log;

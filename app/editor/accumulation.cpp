@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/settings.h"
 #include "shaders/shared/brume.h"
 
 namespace brume::editor {
@@ -24,19 +25,41 @@ int convergedFrames(const Scene& scene) {
     return n;
 }
 
+Interaction::Interaction(double maxScale, double budgetMs)
+    : maxScale_(std::clamp(maxScale, minScale(), 1.0)), budgetMs_(std::max(budgetMs, 0.0)), scale_(maxScale_) {}
+
+double Interaction::minScale() { return settings::editor_interactive_scale.min; }
+
 ViewPlan Interaction::plan(uint64_t revision, bool grouping, Quality preset, int width, int height) {
     const bool changed = seen_ && revision != revision_;
     seen_ = true;
     revision_ = revision;
     ViewPlan p;
-    p.coarse = scale_ < 1.0 && (grouping || changed);
+    p.coarse = maxScale_ < 1.0 && (grouping || changed);
     p.quality = p.coarse ? Quality::Low : preset;
-    const double s = p.coarse ? scale_ : 1.0;
-    p.width = std::max(1, static_cast<int>(std::lround(width * s)));
-    p.height = std::max(1, static_cast<int>(std::lround(height * s)));
+    p.scale = p.coarse ? scale_ : 1.0;
+    p.width = std::max(1, static_cast<int>(std::lround(width * p.scale)));
+    p.height = std::max(1, static_cast<int>(std::lround(height * p.scale)));
     p.restartHistory = lastCoarse_ && !p.coarse;
+    p.steady = p.coarse && lastCoarse_ && p.scale == lastScale_;
     lastCoarse_ = p.coarse;
+    lastScale_ = p.scale;
     return p;
+}
+
+void Interaction::measured(double frameMs) {
+    if (budgetMs_ <= 0.0 || !(frameMs > 0.0) || !std::isfinite(frameMs)) return;
+    // Dead band: a frame between 60% and 100% of the budget keeps its size.
+    if (frameMs <= budgetMs_ && frameMs >= 0.6 * budgetMs_) return;
+    // Pixels follow budget / time (aiming at 80% of the budget), at most halved or doubled a frame.
+    const double pixels = std::clamp(0.8 * budgetMs_ / frameMs, 0.5, 2.0);
+    double s = scale_ * std::sqrt(pixels);
+    s = std::round(s / kScaleStep) * kScaleStep;
+    scale_ = std::clamp(s, minScale(), maxScale_);
+}
+
+int coarseTilePx(int lowTilePx, double scale) {
+    return std::max(1, static_cast<int>(std::lround(lowTilePx * std::sqrt(scale / 0.5))));
 }
 
 bool Accumulation::wantsFrame(const ViewKey& key, const Scene& scene, bool force) const {

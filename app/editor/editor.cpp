@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -34,8 +35,8 @@ std::string vec3Words(glm::vec3 v) {
 
 }  // namespace
 
-Editor::Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale)
-    : doc_(std::move(doc)), autosave_(std::move(autosave)), quality_(quality), interaction_(interactiveScale) {}
+Editor::Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale, double frameBudgetMs)
+    : doc_(std::move(doc)), autosave_(std::move(autosave)), quality_(quality), interaction_(interactiveScale, frameBudgetMs) {}
 
 Result<void> Editor::run(const std::string& line) {
     Result<Action> a = parseAction(line);
@@ -236,6 +237,7 @@ Result<void> Editor::viewAction(const Action& a) {
 }
 
 Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
+    if (std::exchange(measureFrame_, false)) interaction_.measured(frameMs);
     const ViewPlan plan = interaction_.plan(doc_.revision(), doc_.grouping(), quality_, width, height);
     const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
     if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
@@ -248,6 +250,7 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     request.debugSlice = debug_.slice;
     Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
+    if (plan.coarse) shown.froxels.tile_px = coarseTilePx(resolveFroxelSettings(shown, Quality::Low).tile_px, plan.scale);
     Result<gpu::GpuRender> out = renderer.renderOnDevice(shown, request);
     accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
     hasImage_ = out.ok();
@@ -259,6 +262,8 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     if (!out) return out.error();
     viewSize_ = glm::ivec2(width, height);
     coarse_ = plan.coarse;
+    measureFrame_ = plan.steady;
+    shownScale_ = plan.scale;
     ++renders_;
     if (debug_.view != shd::DEBUG_VIEW_FINAL) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
     last_ = std::move(out.value());

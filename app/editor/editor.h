@@ -34,8 +34,9 @@ struct Notification {
 
 class Editor {
 public:
-    // interactiveScale: Interaction's scale (accumulation.h), settings::editor_interactive_scale.
-    Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale = 1.0);
+    // interactiveScale, frameBudgetMs: Interaction's (accumulation.h), settings::editor_interactive_scale
+    // and settings::editor_frame_budget_ms.
+    Editor(Document doc, Autosave autosave, Quality quality, double interactiveScale = 1.0, double frameBudgetMs = 0.0);
 
     // Every action goes through here. Editor verbs (the rest are Document's):
     //   select volume|light|geometry|influencer INDEX | select none
@@ -66,7 +67,8 @@ public:
     // Call once per frame. Renders when the document, quality or size changed since the last
     // render, or while the temporal accumulation of a resting view has not converged (or always
     // with `force`), with the renderer's history carried on (see accumulation.h); coarse while the
-    // user interacts (Interaction). The image stays on the renderer's device (viewportImage).
+    // user interacts (Interaction), at the scale the frame time of earlier coarse frames (frameMs, set
+    // by the caller after each frame) allows. The image stays on the renderer's device (viewportImage).
     Result<void> renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force);
     const Accumulation& accumulation() const { return accumulation_; }
     // The last render's output, or none (nothing rendered yet, or the last render failed).
@@ -75,6 +77,8 @@ public:
     glm::ivec2 viewSize() const { return viewSize_; }
     // Whether the viewport shows a coarse frame (Interaction, accumulation.h).
     bool coarse() const { return coarse_; }
+    // The fraction of the window's size the viewport image was rendered at (1 at rest).
+    double shownScale() const { return shownScale_; }
     // Successful renders so far (a frame rendered when this grew).
     uint64_t renders() const { return renders_; }
     const std::optional<gpu::GpuRender>& lastRender() const { return last_; }
@@ -115,6 +119,8 @@ private:
     bool coarse_ = false;
     uint64_t renders_ = 0;
     Interaction interaction_;
+    double shownScale_ = 1.0;
+    bool measureFrame_ = false;  // the last frame rendered a steady coarse plan: frameMs times it
     std::optional<gpu::GpuRender> last_;
     Accumulation accumulation_;
     std::deque<Notification> notifications_;

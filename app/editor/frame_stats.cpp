@@ -39,6 +39,9 @@ void FrameStats::add(const std::string& kind, double frameMs, const std::vector<
     }
 }
 
+void FrameStats::addCoarseScale(double scale) { scales_.push_back(scale); }
+void FrameStats::addSettle(double ms) { settleMs_.push_back(ms); }
+
 std::string FrameStats::report() const {
     std::string out = "bench: frame wall time (frames after the first)\n  " + line("all", all_.frameMs) + "\n";
     for (const auto& [kind, s] : byKind_) {
@@ -51,6 +54,18 @@ std::string FrameStats::report() const {
             out += buf;
         }
         out.back() = '\n';
+    }
+    if (!scales_.empty()) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "  coarse scale: first %.3f, last %.3f, median %.3f of the window\n", scales_.front(),
+                      scales_.back(), percentile(scales_, 0.5));
+        out += buf;
+    }
+    if (!settleMs_.empty()) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "  settle  %4zu times: median %8.1f ms, max %8.1f ms (last edit to the first full-preset frame)\n",
+                      settleMs_.size(), percentile(settleMs_, 0.5), percentile(settleMs_, 1.0));
+        out += buf;
     }
     return out;
 }

@@ -1,6 +1,7 @@
 // brume-editor --bench: every frame's wall time and, for frames that rendered, the renderer's
 // per-pass GPU times and the window's present time; printed at exit as median and p95 per kind of
-// frame (coarse while interacting, full at rest, UI only), skipping the first (it compiles shaders).
+// frame (coarse while interacting, full at rest, UI only), skipping the first (it compiles shaders);
+// also the coarse frames' scale and how long the view took to settle after an interaction.
 #pragma once
 
 #include <map>
@@ -15,6 +16,11 @@ class FrameStats {
 public:
     // kind: "coarse", "rest" or "ui" (nothing rendered).
     void add(const std::string& kind, double frameMs, const std::vector<gpu::PassTiming>& passes, double presentMs);
+    // The scale of the window a coarse frame rendered at (Interaction, accumulation.h).
+    void addCoarseScale(double scale);
+    // From the start of the last coarse frame of an interaction (the frame of its last edit) to the
+    // end of the first full-preset frame after it: when the view shows the preset again.
+    void addSettle(double ms);
     std::string report() const;
 
 private:
@@ -24,6 +30,8 @@ private:
         std::vector<std::string> passOrder;
     };
     int frames_ = 0;
+    std::vector<double> scales_;
+    std::vector<double> settleMs_;
     Samples all_;
     std::map<std::string, Samples> byKind_;
 };

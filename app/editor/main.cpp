@@ -46,6 +46,7 @@ struct Options {
     bool validation = false;
     std::string device;
     double interactiveScale = settings::editor_interactive_scale.value();
+    double frameBudgetMs = settings::editor_frame_budget_ms.value();
     bool bench = false;
 };
 
@@ -119,6 +120,9 @@ int main(int argc, char** argv) {
     const Setting& scale = settings::editor_interactive_scale;
     app.add_option("--interactive-scale", o.interactiveScale, std::string(scale.help))
         ->check(CLI::Range(scale.min, scale.max));
+    const Setting& budget = settings::editor_frame_budget_ms;
+    app.add_option("--frame-budget-ms", o.frameBudgetMs, std::string(budget.help) + " [ms]")
+        ->check(CLI::Range(budget.min, budget.max));
     app.add_flag("--bench", o.bench, "At exit, print the median and p95 frame time and the per-pass times (use with --script or --frames).");
     try {
         app.parse(argc, argv);
@@ -185,6 +189,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
     const bool fixedClock = !o.script.empty() || !o.screenshot.empty() || o.frames > 0;
     if (fixedClock) editor.sceneTime().play(false);
     double frameStart = seconds(), totalMs = 0.0, lastNow = seconds();
+    double lastCoarseStart = -1.0;  // --bench: the start of the latest coarse frame, until the view settles
     int frame = 0;
     std::string shownTitle;
     while (true) {
@@ -223,6 +228,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         int w = 0, h = 0;
         glfwGetFramebufferSize(presenter.window(), &w, &h);
         const uint64_t rendersBefore = editor.renders();
+        const double renderStart = seconds();
         if (w > 0 && h > 0) {
             if (Result<void> r = presenter.waitForFrame(); !r) return fail(r.error().message, 1);
             if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) {
@@ -230,6 +236,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
                 std::fprintf(stderr, "%s\n", r.error().message.c_str());  // also in logs and tests
             }
         }
+        const double renderEnd = seconds();
         ++frame;
         const bool last = o.frames > 0 && frame >= o.frames;
         const bool capture = (last && !o.screenshot.empty()) || !editor.screenshotRequest.empty();
@@ -252,8 +259,20 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         if (o.bench) {
             const bool rendered = editor.renders() != rendersBefore;
             const char* kind = !rendered ? "ui" : editor.coarse() ? "coarse" : "rest";
-            stats.add(kind, editor.frameMs, rendered ? editor.lastRender()->passes : std::vector<gpu::PassTiming>{},
-                      presentMs);
+            if (rendered && editor.coarse()) {
+                stats.addCoarseScale(editor.shownScale());
+                lastCoarseStart = end - editor.frameMs / 1000.0;
+            } else if (rendered && lastCoarseStart >= 0.0) {
+                stats.addSettle((end - lastCoarseStart) * 1000.0);
+                lastCoarseStart = -1.0;
+            }
+            // Besides the GPU passes, the frame's CPU-side parts: input, script and UI before the
+            // render; the render call (waiting for the previous window frame, compiling the scene,
+            // recording, submitting, waiting for the device).
+            std::vector<gpu::PassTiming> parts = rendered ? editor.lastRender()->passes : std::vector<gpu::PassTiming>{};
+            parts.push_back({"before render (cpu)", (renderStart - (end - editor.frameMs / 1000.0)) * 1000.0});
+            parts.push_back({"render call", (renderEnd - renderStart) * 1000.0});
+            stats.add(kind, editor.frameMs, parts, presentMs);
         }
         if (last) {
             if (frame > 1) std::printf("frames: %d, mean frame time (after the first): %.1f ms\n", frame, totalMs / (frame - 1));
@@ -278,7 +297,8 @@ int runEditor(const Options& o) {
     Result<Script> script = readScript(o.script);
     if (!script) return fail(script.error().message, 2);
     const std::string recoveryPath = recoveryPathFor(doc.value().path());
-    Editor editor(std::move(doc.value()), Autosave(recoveryPath, o.autosaveSeconds), quality, o.interactiveScale);
+    Editor editor(std::move(doc.value()), Autosave(recoveryPath, o.autosaveSeconds), quality, o.interactiveScale,
+                  o.frameBudgetMs);
     for (std::string& w : editor.files().recent().load()) editor.files().message(std::move(w));
     for (std::string& w : warnings) editor.files().message(std::move(w));
     editor.files().noteRecent(editor.doc().path());
