@@ -68,6 +68,9 @@ public:
     // with `force`), with the renderer's history carried on (see accumulation.h); coarse while the
     // user interacts (Interaction). The image stays on the renderer's device (viewportImage).
     Result<void> renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force);
+    // The renderer was replaced (a lost device recreated): nothing is shown until the next render,
+    // which happens on the next frame.
+    void rendererReplaced();
     const Accumulation& accumulation() const { return accumulation_; }
     // The last render's output, or none (nothing rendered yet, or the last render failed).
     gpu::OutputImage viewportImage(const gpu::GpuRenderer& renderer) const;
