@@ -112,6 +112,7 @@ Result<std::unique_ptr<Device>> Device::create(const GpuOptions& options) {
     if (wanted.empty() && std::getenv("BRUME_DEVICE")) wanted = std::getenv("BRUME_DEVICE");
     BRUME_TRY(d->pickPhysicalDevice(wanted));
     BRUME_TRY(d->createLogicalDevice());
+    deviceCreated();  // fault injection (vk_check.h): a new device is not a lost one
     return d;
 }
 

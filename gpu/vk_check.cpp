@@ -43,16 +43,23 @@ bool isGpuFault(const Error& e) {
     return false;
 }
 
+bool isDeviceLost(const Error& e) {
+    return e.message.rfind("Vulkan could not ", 0) == 0 &&
+           e.message.find(describeVkResult(VK_ERROR_DEVICE_LOST)) != std::string::npos;
+}
+
 namespace {
 
 struct Injection {
     std::atomic<uint64_t> failAt{0};  // 0: never
     std::atomic<uint64_t> calls{0};
+    std::atomic<bool> sticky{false};  // dead@N: every call from the Nth on fails ...
+    std::atomic<bool> dead{false};    // ... until a device is created (deviceCreated)
 };
 Injection g_injections[2];
 std::once_flag g_fromEnvironment;
 
-// BRUME_GPU_FAULT=oom@N | lost@N, read once.
+// BRUME_GPU_FAULT=oom@N | lost@N | dead@N, read once.
 void readEnvironment() {
     const char* v = std::getenv("BRUME_GPU_FAULT");
     if (!v) return;
@@ -63,22 +70,30 @@ void readEnvironment() {
     if (end == at + 1 || *end != '\0') return;
     const std::string kind(v, at);
     if (kind == "oom") g_injections[int(FaultSite::Allocate)].failAt = n;
-    if (kind == "lost") g_injections[int(FaultSite::Submit)].failAt = n;
+    if (kind == "lost" || kind == "dead") g_injections[int(FaultSite::Submit)].failAt = n;
+    g_injections[int(FaultSite::Submit)].sticky = kind == "dead";
 }
 
 }  // namespace
 
 void setFaultInjection(FaultSite site, uint64_t n) {
     std::call_once(g_fromEnvironment, readEnvironment);
-    for (Injection& i : g_injections) i.calls = 0;
+    for (Injection& i : g_injections) i.calls = 0, i.sticky = false, i.dead = false;
     g_injections[int(site)].failAt = n;
+}
+
+void deviceCreated() {
+    std::call_once(g_fromEnvironment, readEnvironment);
+    g_injections[int(FaultSite::Submit)].dead = false;
 }
 
 VkResult injectedFault(FaultSite site) {
     std::call_once(g_fromEnvironment, readEnvironment);
     Injection& i = g_injections[int(site)];
     const uint64_t call = ++i.calls;
+    if (i.dead) return VK_ERROR_DEVICE_LOST;
     if (i.failAt == 0 || call != i.failAt) return VK_SUCCESS;
+    if (i.sticky) i.dead = true;
     return site == FaultSite::Allocate ? VK_ERROR_OUT_OF_DEVICE_MEMORY : VK_ERROR_DEVICE_LOST;
 }
 

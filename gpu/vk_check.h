@@ -26,14 +26,19 @@ T vkStruct(VkStructureType type) {
 Error vkError(const std::string& action, VkResult r);
 // Whether `e` came from vkError for out-of-memory or device loss: a lower quality may still render.
 bool isGpuFault(const Error& e);
+// Whether `e` came from vkError for a lost device: the device is unusable and must be recreated.
+bool isDeviceLost(const Error& e);
 
 // Fault injection for tests (docs/reliability.md, "GPU faults"). The environment variable
 // BRUME_GPU_FAULT=oom@N makes the Nth GPU memory allocation of the process fail with
 // VK_ERROR_OUT_OF_DEVICE_MEMORY, and lost@N the Nth frame submission fail with VK_ERROR_DEVICE_LOST
-// (the frame is not submitted); N counts from 1, and a bad value is ignored. setFaultInjection does
-// the same in-process (n = 0: none) and restarts the counts.
+// (the frame is not submitted); N counts from 1, and a bad value is ignored. dead@N stands for a
+// real device loss: the Nth submission and every one after it fail, until a device is created
+// again (deviceCreated). setFaultInjection does the same in-process (n = 0: none) and restarts the counts.
 enum class FaultSite { Allocate, Submit };
 void setFaultInjection(FaultSite site, uint64_t n);
+// Called by Device::create: a lost device of dead@N is replaced, and submissions succeed again.
+void deviceCreated();
 // VK_SUCCESS, or the injected failure when this call is the chosen one (counts every call).
 VkResult injectedFault(FaultSite site);
 

@@ -27,6 +27,8 @@
 #include <thread>
 #include <vector>
 
+#include "hostile_scenes.h"
+#include "io/image_io.h"
 #include "io/scene_json.h"
 
 namespace fs = std::filesystem;
@@ -246,12 +248,14 @@ TEST(EditorCrash, KillNineAtRandomMomentsOfAScriptedSessionLosesAtMostTheAutosav
 }
 
 // GPU faults in the editor (gpu/vk_check.h fault injection): the viewport says what happened and
-// falls back to the preset below; the session goes on (validation layer on and silent).
+// falls back to the preset below; the session goes on (validation layer on and silent). dead@1 is a
+// real device loss (every submission fails until a device is created): the editor recreates the
+// device, and the viewport shows a render again (before, it stayed empty for the rest of the session).
 TEST(EditorFaults, AGpuFaultFallsBackToTheLowerPresetAndTheSessionGoesOn) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (apt-get install xvfb xauth): windowed editor tests skipped";
     test::TempDir tmp("editor_crash", "faults");
     fs::copy_file(kDefaultScene, tmp.path / "scene.json");
-    for (const std::string fault : {"lost@1", "oom@12"}) {
+    for (const std::string fault : {"lost@1", "oom@12", "dead@1"}) {
         const fs::path shot = tmp.path / "shot.png", log = tmp.path / "log.txt";
         fs::remove(shot);
         const std::string cmd = "BRUME_GPU_FAULT=" + fault + " XDG_CONFIG_HOME=" + quoted((tmp.path / "config").string()) +
@@ -261,8 +265,51 @@ TEST(EditorFaults, AGpuFaultFallsBackToTheLowerPresetAndTheSessionGoesOn) {
         const int status = std::system(cmd.c_str());
         const std::string text = readText(log);
         EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << fault << ": " << text;
-        EXPECT_NE(text.find(fault[0] == 'l' ? "device lost" : "ran out of memory"), std::string::npos) << text;
+        EXPECT_NE(text.find(fault[0] == 'o' ? "ran out of memory" : "device lost"), std::string::npos) << text;
         EXPECT_NE(text.find("The viewport falls back to quality medium."), std::string::npos) << text;
         EXPECT_TRUE(fs::exists(shot)) << fault << ": " << text;
+        if (fault[0] != 'o') {
+            EXPECT_NE(text.find("The GPU device was lost: brume-editor recreated it."), std::string::npos) << text;
+        }
+        // The viewport shows the scene (fog and lights), not the empty window's one colour.
+        Result<Image> img = readPngLinear(shot.string());
+        ASSERT_TRUE(img.ok()) << fault << ": " << (img.ok() ? "" : img.error().message);
+        float lo = 1e30f, hi = 0.0f;
+        for (const glm::vec3& p : img.value().pixels) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+        EXPECT_GT(hi - lo, 0.01f) << fault << ": the viewport is empty: " << text;
     }
+}
+
+// The windowed editor on mutated scenes (tests/hostile_scenes.h): started on a file `brume validate`
+// refuses, it prints one `error:` line and exits 2, as the command line does; on a mutant the
+// command line accepts, it renders and exits 0 (2 of each) (validation layer on and silent). Never a crash.
+TEST(EditorHostile, TheEditorRefusesWhatTheCommandLineRefusesAndRendersTheRest) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (apt-get install xvfb xauth): windowed editor tests skipped";
+    test::TempDir tmp("editor_crash", "hostile");
+    const std::vector<fs::path> mutants = test::writeMutatedScenes(tmp.path, 40, 23u);
+    int accepted = 0, refused = 0;
+    for (const fs::path& m : mutants) {
+        const std::string validate = std::string(BRUME_EXE) + " validate " + quoted(m.string()) + " > /dev/null 2>&1";
+        const int v = std::system(validate.c_str());
+        ASSERT_TRUE(WIFEXITED(v)) << m;
+        const bool ok = WEXITSTATUS(v) == 0;
+        if ((ok ? accepted : refused) >= 2) continue;
+        ++(ok ? accepted : refused);
+        const fs::path log = tmp.path / "log.txt";
+        const std::string cmd = "XDG_CONFIG_HOME=" + quoted((tmp.path / "config").string()) + " XDG_STATE_HOME=" +
+                                quoted((tmp.path / "state").string()) + " " + kXvfb + BRUME_EDITOR_EXE + " " +
+                                quoted(m.string()) + kSmall + " --validation --frames 2 > " + quoted(log.string()) + " 2>&1";
+        const int status = std::system(cmd.c_str());
+        const std::string text = readText(log);
+        ASSERT_TRUE(WIFEXITED(status)) << m << ": the editor did not exit: " << text;
+        if (ok) {
+            EXPECT_EQ(WEXITSTATUS(status), 0) << m << ": " << text;
+        } else {
+            EXPECT_EQ(WEXITSTATUS(status), 2) << m << ": " << text;
+            EXPECT_EQ(text.rfind("error: ", 0), 0u) << m << ": " << text;
+            EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << m << ": not one line: " << text;
+        }
+    }
+    EXPECT_EQ(accepted, 2);
+    EXPECT_EQ(refused, 2);
 }

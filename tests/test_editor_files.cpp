@@ -3,8 +3,10 @@
 // directory listing.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include "app/editor/autosave.h"
 #include "app/editor/files.h"
 #include "app/editor/view.h"
+#include "hostile_scenes.h"
 #include "io/scene_json.h"
 #include "mesh_test_util.h"
 #include "vdb_test_util.h"
@@ -351,5 +354,49 @@ TEST(EditorFiles, TemporariesLeftByAKilledSaveAreRemovedByTheNextSession) {
     EXPECT_TRUE(fs::exists(alive));  // a save under way in a running process
     EXPECT_TRUE(fs::exists(other));  // another file's
     EXPECT_TRUE(loadSceneFile(doc.path()).ok());
+    fs::remove_all(dir);
+}
+
+// The editor never crashes on a file the command line refuses (issue 17): mutated scenes (keys
+// deleted, values of the wrong type, huge and tiny numbers, flipped bytes; tests/hostile_scenes.h)
+// are checked by `brume validate`, then opened through the editor's Open. A refused file is one
+// sentence naming it, and the open document stays as it was (or, where only a grid or mesh file
+// failed, the scene opens with that warning, as the editor does for any unreadable grid); an
+// accepted file opens. Nothing throws.
+TEST(EditorFiles, MutatedScenesTheCommandLineRefusesNeverCrashTheEditor) {
+    const fs::path dir = tempDir("hostile");
+    const std::vector<fs::path> mutants = test::writeMutatedScenes(dir, 60, 17u);
+    Files files{RecentFiles()};
+    Document doc = defaultAt(dir / "base.json");
+    int accepted = 0, refused = 0;
+    for (const fs::path& m : mutants) {
+        const std::string cmd = std::string(BRUME_EXE) + " validate " + test::quoted(m.string()) + " > /dev/null 2>&1";
+        const int status = std::system(cmd.c_str());
+        ASSERT_TRUE(WIFEXITED(status)) << m << ": brume validate did not exit";
+        const int code = WEXITSTATUS(status);
+        ASSERT_TRUE(code == 0 || code == 2) << m << ": brume validate exit code " << code;
+        const std::string before = doc.path();
+        files.takeMessages();
+        Result<void> r{};
+        EXPECT_NO_THROW(r = run(files, doc, "open \"" + m.string() + "\" --discard")) << m;
+        if (code == 0) {
+            ++accepted;
+            EXPECT_TRUE(r.ok()) << m << ": the CLI accepts it, the editor says: " << (r.ok() ? "" : r.error().message);
+            continue;
+        }
+        ++refused;
+        if (r.ok()) {
+            // Only a grid or a mesh could not be read: a warning, as for any unreadable grid.
+            EXPECT_FALSE(files.takeMessages().empty()) << m << ": refused by the CLI, opened silently by the editor";
+            continue;
+        }
+        const std::string& msg = r.error().message;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << m << ": not one line: " << msg;
+        EXPECT_NE(msg.find(m.filename().string()), std::string::npos) << m << ": does not name the file: " << msg;
+        EXPECT_EQ(doc.path(), before) << m;
+    }
+    EXPECT_GT(accepted, 0);
+    EXPECT_GT(refused, 0);
+    std::printf("mutated scenes: %d accepted, %d refused by brume validate\n", accepted, refused);
     fs::remove_all(dir);
 }

@@ -3,7 +3,8 @@
 // and 1e6 m, depth fog with a visibility of 1 mm, a point light at a froxel's sample point, a 0 deg
 // spot. Every image must be finite and non-negative; where only the sky lights the scene no pixel may
 // exceed the sky radiance (energy is never created); inside an opaque box the froxel renderers must
-// agree with the reference's closed form. Render times are printed (docs/reliability.md quotes them),
+// agree with the reference's closed form; the lights' glow stays finite near the froxel near plane
+// (near 1e-4 m, far 1e4 m, lights at the camera). Render times are printed (docs/reliability.md quotes them),
 // never asserted.
 #include <gtest/gtest.h>
 
@@ -149,6 +150,33 @@ std::vector<Case> extremeCases() {
     return cases;
 }
 
+// The lights' glow near the froxel near plane (shaders/shared/glow.h): near 1e-4 m, far 1e4 m, the
+// extreme slice distributions, point lights at the camera and just past the near plane and a spot
+// at the camera, in fog around the camera. Froxel renderers only (the glow is their split of the
+// inverse square); each image finite and non-negative.
+std::vector<Case> glowCases() {
+    std::vector<Case> cases;
+    for (float k : {0.1f, 8.0f}) {
+        Scene s = baseScene();
+        s.camera.near = 1e-4f;
+        s.camera.far = 1e4f;
+        s.froxels.far = 1e4f;
+        s.froxels.distribution = k;
+        s.volumes = {boxFog(s.camera.position, glm::vec3(4.0f), 0.2f, 0.3f, 0.05f)};
+        const glm::vec3 forward = glm::normalize(s.camera.target - s.camera.position);
+        for (float depth : {0.0f, 2e-4f, 1e-3f}) {
+            s.lights.push_back(test::pointLight(s.camera.position + forward * depth, 0.0f, 1e3f));
+        }
+        Light spot = makeLight(LightType::Spot);
+        spot.position = s.camera.position;
+        spot.direction = forward;
+        spot.intensity = 1e3f;
+        s.lights.push_back(spot);
+        cases.push_back({"glow at the near plane, k = " + std::to_string(k), s, false});
+    }
+    return cases;
+}
+
 // The camera inside a box of sigma_s = sigma_a = 1e9/m with emission 1e6, a 1e6 sun and a 1e6 point
 // light 0.5 m ahead. Neither light reaches the camera; every pixel sees sigma_s A / sigma_t +
 // emission / sigma_t = 0.25 + 5e-4 (the closed form, exact in the reference).
@@ -214,8 +242,8 @@ void expectSane(const Image& img, const Case& c, const char* renderer) {
 
 using Renderer = std::function<Image(const Scene&, const RenderRequest&)>;
 
-void checkAll(const Renderer& render, const char* renderer) {
-    for (const Case& c : extremeCases()) {
+void checkAll(const Renderer& render, const char* renderer, const std::vector<Case>& cases = extremeCases()) {
+    for (const Case& c : cases) {
         const auto start = std::chrono::steady_clock::now();
         const Image img = render(c.scene, request160x90());
         std::printf("%-10s %-42s %7.2f s  max %.4g\n", renderer, c.name.c_str(), seconds(start), maxValue(img));
@@ -253,6 +281,10 @@ TEST(Extremes, CpuFroxelRendersEveryCaseFiniteAndBounded) {
     checkAll([](const Scene& s, const RenderRequest& r) { return renderFroxelCpu(s, r).image; }, "cpu");
 }
 
+TEST(Extremes, CpuFroxelGlowNearTheNearPlaneIsFinite) {
+    checkAll([](const Scene& s, const RenderRequest& r) { return renderFroxelCpu(s, r).image; }, "cpu", glowCases());
+}
+
 TEST(Extremes, CpuFroxelOpaqueBoxAgreesWithTheReference) {
     checkOpaque([](const Scene& s, const RenderRequest& r) { return renderFroxelCpu(s, r).image; }, "cpu");
 }
@@ -268,6 +300,16 @@ TEST_F(ExtremesGpu, RendersEveryCaseFiniteAndBounded) {
             return out.ok() ? out.value().image : Image();
         },
         "gpu");
+}
+
+TEST_F(ExtremesGpu, GlowNearTheNearPlaneIsFinite) {
+    checkAll(
+        [this](const Scene& s, const RenderRequest& r) {
+            auto out = renderer->render(s, r);
+            EXPECT_TRUE(out.ok()) << (out.ok() ? "" : out.error().message);
+            return out.ok() ? out.value().image : Image();
+        },
+        "gpu", glowCases());
 }
 
 TEST_F(ExtremesGpu, OpaqueBoxAgreesWithTheReference) {

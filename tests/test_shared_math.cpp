@@ -513,6 +513,55 @@ TEST(Lights, GlowSplitKeepsTheWholeInverseSquare) {
     EXPECT_EQ(shd::lightGlowRay(l, f, origin, glm::normalize(toLight + side * (1.1f * radius)), 20.0f).radius, 0.0f);
 }
 
+// The glow radius at the ends of the froxel mapping (issue 17): near 1e-4 m, far 1e4 m, every
+// distribution exponent in range, lights from the camera itself to the far plane. R is the slice
+// thickness (far - near) k t^(k-1) / slices with t = u^(1/k): dividing by t underflowed near the
+// froxel near plane (k = 0.1: t = u^10 = 0 for a light at 1 mm), giving an infinite R. R, the froxel
+// part and the pixel part must stay finite and non-negative, and R no larger than a whole-grid
+// froxel.
+TEST(Lights, GlowRadiusStaysFiniteAtTheFroxelNearPlane) {
+    Scene scene;
+    scene.camera.position = {0.0f, 1.0f, 0.0f};
+    scene.camera.target = {0.0f, 1.0f, -1.0f};
+    scene.camera.near = 1e-4f;
+    scene.camera.far = 1e4f;
+    scene.froxels.far = 1e4f;
+    const glm::vec3 forward(0.0f, 0.0f, -1.0f);
+    for (float k : {0.1f, 0.5f, 1.0f, 2.0f, 8.0f}) {
+        scene.froxels.distribution = k;
+        const FroxelSettings fs = resolveFroxelSettings(scene, Quality::High);
+        const shd::FrameUniforms f = makeFrameUniforms(scene, compileScene(scene), 160, 90, fs);
+        ASSERT_FLOAT_EQ(f.froxelRange.x, 1e-4f);
+        ASSERT_FLOAT_EQ(f.froxelRange.y, 1e4f);
+        // The largest footprint of one froxel anywhere in the grid: a tile at the far plane, the
+        // whole depth range thick.
+        const float tileW = 2.0f * f.projection.x * 1e4f * float(f.froxelDims.w) / float(f.counts.x);
+        const float tileH = 2.0f * f.projection.y * 1e4f * float(f.froxelDims.w) / float(f.counts.y);
+        const float bound = shd::LIGHT_GLOW_FROXELS * 0.5f * std::sqrt(tileW * tileW + tileH * tileH + 1e8f);
+        for (float depth : {0.0f, 1e-4f, 1.00001e-4f, 1.1e-4f, 1e-3f, 1e-2f, 1.0f, 100.0f, 9999.0f}) {
+            Light point = makeLight(LightType::Point);
+            point.position = glm::vec3(0.0f, 1.0f, 0.0f) + forward * depth;
+            point.intensity = 1e6f;
+            const shd::LightData l = compileLight(point);
+            const float radius = shd::lightGlowRadius(l, f);
+            ASSERT_TRUE(std::isfinite(radius)) << "k " << k << ", light at " << depth << " m";
+            ASSERT_GE(radius, 0.0f) << "k " << k << ", light at " << depth << " m";
+            EXPECT_LE(radius, bound * 1.0001f) << "k " << k << ", light at " << depth << " m";
+            const glm::vec3 origin = glm::vec3(f.cameraPosition);
+            for (float along : {2e-4f, 1e-3f, 0.5f, 50.0f}) {
+                for (const glm::vec3 dir : {forward, glm::normalize(forward + glm::vec3(0.01f, 0.0f, 0.0f))}) {
+                    const glm::vec3 p = origin + dir * along;
+                    const float froxel = shd::evalLightFroxel(l, p, 0.0f, f).irradiance.x;
+                    EXPECT_TRUE(std::isfinite(froxel) && froxel >= 0.0f) << "k " << k << ", light at " << depth;
+                    const shd::LightGlowRay r = shd::lightGlowRay(l, f, origin, dir, along);
+                    const glm::vec3 pixel = shd::lightGlowPerSigmaS(l, r, origin, dir, glm::vec3(0.1f), 0.3f);
+                    EXPECT_TRUE(std::isfinite(pixel.x) && pixel.x >= 0.0f) << "k " << k << ", light at " << depth;
+                }
+            }
+        }
+    }
+}
+
 // Scenes built in code skip the file's range checks: the divisors of the density profiles are held
 // to their settings' minimum when compiled, so a zero never reaches the shared formulas.
 TEST(Density, ZeroDivisorsFromCodeStayFinite) {

@@ -270,6 +270,12 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     return {};
 }
 
+void Editor::rendererReplaced() {
+    hasImage_ = false;
+    last_.reset();
+    accumulation_ = Accumulation();
+}
+
 gpu::OutputImage Editor::viewportImage(const gpu::GpuRenderer& renderer) const {
     return hasImage_ ? renderer.outputImage() : gpu::OutputImage{};
 }

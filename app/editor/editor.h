@@ -70,6 +70,9 @@ public:
     // user interacts (Interaction), at the scale the frame time of earlier coarse frames (frameMs, set
     // by the caller after each frame) allows. The image stays on the renderer's device (viewportImage).
     Result<void> renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force);
+    // The renderer was replaced (a lost device recreated): nothing is shown until the next render,
+    // which happens on the next frame.
+    void rendererReplaced();
     const Accumulation& accumulation() const { return accumulation_; }
     // The last render's output, or none (nothing rendered yet, or the last render failed).
     gpu::OutputImage viewportImage(const gpu::GpuRenderer& renderer) const;

@@ -19,6 +19,7 @@
 #include "core/settings.h"
 #include "editor.h"
 #include "frame_stats.h"
+#include "gpu/vk_check.h"
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
 #include "presenter.h"
@@ -178,20 +179,40 @@ void offerRecovery(Editor& editor, UiState& ui, const Options& o, double now) {
 }
 
 
-// One iteration per frame: input, script, UI, autosave, render (when something changed, or every
-// frame with --frames so frame times measure the renderer), present.
-int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuRenderer& renderer, Script& script) {
+// What the loop keeps when runEditor re-enters it with a recreated device (a lost device).
+struct LoopState {
+    bool started = false;
     FrameStats stats;
     UiState ui;
-    offerRecovery(editor, ui, o, seconds());
-    std::string offeredFor = editor.autosave().path();
-    // Scripted and screenshot runs get a frame-count clock that starts paused (scene_time.h).
-    const bool fixedClock = !o.script.empty() || !o.screenshot.empty() || o.frames > 0;
-    if (fixedClock) editor.sceneTime().play(false);
-    double frameStart = seconds(), totalMs = 0.0, lastNow = seconds();
+    std::string offeredFor;
+    double frameStart = 0.0, totalMs = 0.0, lastNow = 0.0;
     double lastCoarseStart = -1.0;  // --bench: the start of the latest coarse frame, until the view settles
     int frame = 0;
     std::string shownTitle;
+};
+// editorLoop's answer when the device was lost: runEditor recreates it and calls the loop again.
+constexpr int kDeviceLost = -1;
+
+// One iteration per frame: input, script, UI, autosave, render (when something changed, or every
+// frame with --frames so frame times measure the renderer), present.
+int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuRenderer& renderer, Script& script,
+               LoopState& st) {
+    FrameStats& stats = st.stats;
+    UiState& ui = st.ui;
+    std::string& offeredFor = st.offeredFor;
+    // Scripted and screenshot runs get a frame-count clock that starts paused (scene_time.h).
+    const bool fixedClock = !o.script.empty() || !o.screenshot.empty() || o.frames > 0;
+    if (!st.started) {
+        st.started = true;
+        offerRecovery(editor, ui, o, seconds());
+        offeredFor = editor.autosave().path();
+        if (fixedClock) editor.sceneTime().play(false);
+        st.frameStart = st.lastNow = seconds();
+    }
+    double &frameStart = st.frameStart, &totalMs = st.totalMs, &lastNow = st.lastNow;
+    int& frame = st.frame;
+    std::string& shownTitle = st.shownTitle;
+    double& lastCoarseStart = st.lastCoarseStart;
     while (true) {
         // The title follows New / Open / Save As.
         const std::string title = "brume-editor - " + (editor.doc().path().empty() ? std::string("untitled") : editor.doc().path());
@@ -230,10 +251,14 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         const uint64_t rendersBefore = editor.renders();
         const double renderStart = seconds();
         if (w > 0 && h > 0) {
-            if (Result<void> r = presenter.waitForFrame(); !r) return fail(r.error().message, 1);
+            if (Result<void> r = presenter.waitForFrame(); !r) {
+                if (gpu::isDeviceLost(r.error())) return std::fprintf(stderr, "%s\n", r.error().message.c_str()), kDeviceLost;
+                return fail(r.error().message, 1);
+            }
             if (Result<void> r = editor.renderIfNeeded(renderer, w, h, o.frames > 0); !r) {
                 editor.notify(r.error().message, now);
                 std::fprintf(stderr, "%s\n", r.error().message.c_str());  // also in logs and tests
+                if (gpu::isDeviceLost(r.error())) return kDeviceLost;
             }
         }
         const double renderEnd = seconds();
@@ -244,8 +269,10 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         const double presentStart = seconds();
         if (Result<void> r = presenter.present(editor.viewportImage(renderer), editor.viewSize(), ImGui::GetDrawData(),
                                                capture ? &shot : nullptr);
-            !r)
+            !r) {
+            if (gpu::isDeviceLost(r.error())) return std::fprintf(stderr, "%s\n", r.error().message.c_str()), kDeviceLost;
             return fail(r.error().message, 1);
+        }
         const double presentMs = (seconds() - presentStart) * 1000.0;
         if (capture) {
             const std::string path = editor.screenshotRequest.empty() ? o.screenshot : editor.screenshotRequest;
@@ -321,7 +348,25 @@ int runEditor(const Options& o) {
     ImGui_ImplGlfw_InitForVulkan(window.handle, true);
     glfwSetDropCallback(window.handle, onDrop);
     int code = 0;
-    {
+    // A lost device (gpu::isDeviceLost: a driver crash or a timeout) cannot be used again: the renderer
+    // and the presenter are created anew, as at start, and the loop goes on with the same document
+    // (the viewport already fell back to the preset below, Editor::renderIfNeeded). A device lost
+    // again and again ends the editor with a sentence; the autosave keeps the edits (--recover).
+    constexpr int kMaxRecreations = 3;
+    LoopState loop;
+    for (int recreations = 0;; ++recreations) {
+        if (recreations > kMaxRecreations) {
+            code = fail("The GPU device was lost " + std::to_string(recreations) +
+                            " times; brume-editor stops (your edits are in the autosave: restart with --recover).",
+                        1);
+            break;
+        }
+        if (recreations > 0) {
+            editor.rendererReplaced();
+            const std::string note = "The GPU device was lost: brume-editor recreated it.";
+            editor.notify(note, seconds());
+            std::fprintf(stderr, "%s\n", note.c_str());
+        }
         // One device renders and draws the window (the renderer outlives the presenter).
         Result<gpu::PresentTarget> target = windowPresentTarget(window.handle);
         if (!target) return fail(target.error().message, 1);
@@ -332,13 +377,17 @@ int runEditor(const Options& o) {
         if (!renderer) return fail(renderer.error().message, named ? 2 : 1);
         Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, renderer.value()->device());
         if (!presenter) return fail(presenter.error().message, 1);
-        code = editorLoop(o, editor, *presenter.value(), *renderer.value(), script.value());
+        code = editorLoop(o, editor, *presenter.value(), *renderer.value(), script.value(), loop);
         presenter.value().reset();
         if (o.validation) {
             const std::vector<std::string> messages = renderer.value()->validationMessages();
             for (const std::string& m : messages) std::fprintf(stderr, "validation: %s\n", m.c_str());
-            if (!messages.empty() && code == 0) code = 1;
+            if (!messages.empty() && (code == 0 || code == kDeviceLost)) {
+                code = 1;
+                break;
+            }
         }
+        if (code != kDeviceLost) break;
     }
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

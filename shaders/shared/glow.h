@@ -42,10 +42,14 @@ BRUME_FUNC float lightGlowRadius(LightData l, FrameUniforms f) {
     float zFar = f.froxelRange.y;
     if (!(z > zNear) || !(z < zFar)) return 0.0f;
     float k = f.froxelRange.z;
-    float u = (z - zNear) / (zFar - zNear);
-    float t = pow(u, 1.0f / k);
-    // Slice thickness dz/ds at z: (far - near) k t^(k-1) / slices.
-    float thickness = (zFar - zNear) * k * u / (t * float(f.froxelDims.z));
+    float slices = float(f.froxelDims.z);
+    // u > 0 here, but kept off 0 so that pow never sees 0^0 (GLSL leaves it undefined).
+    float u = max((z - zNear) / (zFar - zNear), 1e-30f);
+    // Slice thickness dz/ds at z: (far - near) k t^(k-1) / slices with t = u^(1/k), written as
+    // u^(1 - 1/k): no division by t, which underflows to 0 near the froxel near plane (u^10 at
+    // k = 0.1). For k < 1 the derivative grows without bound toward the near plane: no slice is
+    // thicker than the whole grid, so it is held there (finite R, never inf or NaN).
+    float thickness = (zFar - zNear) * k * min(pow(u, 1.0f - 1.0f / k), slices / k) / slices;
     float tile = float(f.froxelDims.w);
     float w = 2.0f * f.projection.x * z * tile / float(f.counts.x);
     float h = 2.0f * f.projection.y * z * tile / float(f.counts.y);
