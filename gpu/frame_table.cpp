@@ -21,7 +21,7 @@ const std::array<PassDecl, 10> kPasses{{
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
-     {B::shadowTransmittance}, true},
+     {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
     // fog's shadow and the shadow maps; sky = ambient at the camera far.
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
@@ -31,18 +31,18 @@ const std::array<PassDecl, 10> kPasses{{
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
      {B::frame, B::volumes, B::vdbGrids},
-     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true},
+     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Light, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
-     {I::sourceImage, B::counters, B::exactList}, true},
+     {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::Light, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
-     {I::sourceImage}, true},
+     {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h), then copied back over
     // sourceImage and mediaExtinction for the integrate pass.
     {"temporal", "temporal", Variant::None, Dispatch::Froxels, When::Always, Record::TemporalCopy,

@@ -28,7 +28,8 @@ MediaSample mediaAt(vec3 p) {
         // Unrolled by hand with each volume's kind a constant (fog_shadow.glsl does the same): only that
         // kind's density is built for it; a loop would run every kind's code for every volume.
 #define BRUME_LISTED_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT) addVolume(m, i, BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i), p);
+    if (i < SPEC_VOLUME_COUNT && BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i) != SPEC_CULLED_VOLUME) \
+        addVolume(m, i, BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i), p);
         BRUME_LISTED_VOLUME(0) BRUME_LISTED_VOLUME(1) BRUME_LISTED_VOLUME(2) BRUME_LISTED_VOLUME(3)
         BRUME_LISTED_VOLUME(4) BRUME_LISTED_VOLUME(5) BRUME_LISTED_VOLUME(6) BRUME_LISTED_VOLUME(7)
         BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)
