@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
-#include "shaders/shared/froxel.h"
+#include "shaders/shared/brume.h"
 
 namespace brume {
 
@@ -57,6 +58,79 @@ FroxelRegion mediaFroxelRegion(const CompiledScene& cs, const shd::FrameUniforms
     }
     if (glm::any(glm::lessThanEqual(hi, lo))) return FroxelRegion{};
     return FroxelRegion{lo, hi};
+}
+
+namespace {
+
+// The convex set of points (the hull of `points`, swept along `sweep` to infinity when it is not
+// zero) against an axis-aligned box: false when some axis separates them (the separating axis test
+// over the box's axes, the hull's edge directions, the sweep and their cross products). Only a proof
+// of separation culls, so a missing axis costs a missed cull, never a wrong one.
+bool mayIntersect(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& edges, glm::vec3 sweep,
+                  glm::vec3 boxLo, glm::vec3 boxHi) {
+    std::vector<glm::vec3> dirs = edges;
+    if (sweep != glm::vec3(0.0f)) dirs.push_back(sweep);
+    std::vector<glm::vec3> axes{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (size_t i = 0; i < dirs.size(); ++i) {
+        for (int a = 0; a < 3; ++a) axes.push_back(glm::cross(axes[static_cast<size_t>(a)], dirs[i]));
+        for (size_t j = i + 1; j < dirs.size(); ++j) axes.push_back(glm::cross(dirs[i], dirs[j]));
+    }
+    const glm::vec3 centre = 0.5f * (boxLo + boxHi), half = 0.5f * (boxHi - boxLo);
+    float scale = glm::length(half);
+    for (const glm::vec3& p : points) scale = std::max(scale, glm::length(p - centre));
+    for (glm::vec3 axis : axes) {
+        const float len = glm::length(axis);
+        if (!(len > 1e-6f)) continue;
+        axis /= len;
+        float lo = INFINITY, hi = -INFINITY;
+        for (const glm::vec3& p : points) {
+            const float d = glm::dot(p - centre, axis);
+            lo = std::min(lo, d), hi = std::max(hi, d);
+        }
+        const float s = glm::dot(sweep, axis);
+        if (s > 0.0f) hi = INFINITY;
+        if (s < 0.0f) lo = -INFINITY;
+        const float r = glm::dot(half, glm::abs(axis));
+        const float margin = 1e-4f * scale + 1e-4f;  // rounding of the frustum's and the shaders' points
+        if (lo > r + margin || hi < -r - margin) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::vector<bool> froxelVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame) {
+    // The froxel frustum: sample points have froxel coordinates in [0, dims] on each axis.
+    const glm::vec3 dims(glm::ivec3(frame.froxelDims));
+    std::vector<glm::vec3> frustum;
+    for (int c = 0; c < 8; ++c)
+        frustum.push_back(shd::worldFromFroxelCoord(
+            glm::vec3((c & 1) ? dims.x : 0.0f, (c & 2) ? dims.y : 0.0f, (c & 4) ? dims.z : 0.0f), frame));
+    // Its edge directions: along x, along y, and the four from the near to the far corners.
+    std::vector<glm::vec3> edges{frustum[1] - frustum[0], frustum[2] - frustum[0]};
+    for (int c = 0; c < 4; ++c) edges.push_back(frustum[static_cast<size_t>(c + 4)] - frustum[static_cast<size_t>(c)]);
+    std::vector<bool> inReach(cs.volumes.size(), true);
+    for (size_t i = 0; i < cs.volumes.size(); ++i) {
+        const shd::VolumeData& v = cs.volumes[i];
+        const glm::vec3 lo(v.worldMin), hi(v.worldMax);
+        const float reach = 0.5f * shd::BRUME_HUGE;
+        if (glm::any(glm::lessThan(lo, glm::vec3(-reach))) || glm::any(glm::greaterThan(hi, glm::vec3(reach)))) continue;
+        bool any = mayIntersect(frustum, edges, glm::vec3(0.0f), lo, hi);
+        for (const shd::LightData& l : cs.lights) {
+            if (any) break;
+            if (!shd::fogShadowsLight(l, frame.localFogShadows)) continue;
+            if (l.kind.x == shd::LIGHT_DIRECTIONAL) {
+                any = mayIntersect(frustum, edges, -glm::vec3(l.direction), lo, hi);
+            } else {
+                std::vector<glm::vec3> points = frustum, toLight = edges;
+                points.push_back(glm::vec3(l.positionRange));
+                for (const glm::vec3& p : frustum) toLight.push_back(glm::vec3(l.positionRange) - p);
+                any = mayIntersect(points, toLight, glm::vec3(0.0f), lo, hi);
+            }
+        }
+        inReach[i] = any;
+    }
+    return inReach;
 }
 
 }  // namespace brume

@@ -26,4 +26,12 @@ struct FroxelRegion {
 // unbounded.
 FroxelRegion mediaFroxelRegion(const CompiledScene& cs, const shd::FrameUniforms& frame);
 
+// Per volume of cs: whether it can add anything to the froxel passes of this frame (voxelize's media,
+// the fog transmittance toward a light at a froxel's sample point or a shadow volume cell). False
+// only when proved: the volume's bounds miss both the froxel frustum (every sample point, any
+// jitter, lies in it) and every shadow ray from it toward a light whose fog shadow is evaluated
+// (directional lights, and point/spot lights with frame.localFogShadows). Such a volume's density and
+// density length there are exactly 0, so leaving it out changes no value. Unbounded volumes: true.
+std::vector<bool> froxelVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame);
+
 }  // namespace brume

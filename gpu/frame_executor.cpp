@@ -353,8 +353,9 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         ctx.cameraFar = cameraFar;
         ctx.vertexCount = vertexCount;
         if (p.dispatch != Dispatch::Raster) {
+            const SpecKey* key = !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
             Result<const ComputePass*> pipeline =
-                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), p.specialized ? &spec : nullptr);
+                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), key);
             if (!pipeline) return pipeline.error();
             ctx.pipeline = pipeline.value();
         }

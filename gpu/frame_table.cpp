@@ -21,7 +21,7 @@ const std::array<PassDecl, 11> kPasses{{
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
-     {B::shadowTransmittance}},
+     {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
     // fog's shadow and the shadow maps; sky = ambient at the camera far.
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
@@ -32,18 +32,18 @@ const std::array<PassDecl, 11> kPasses{{
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
      {B::frame, B::volumes, B::vdbGrids, B::influence},
-     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true},
+     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Light, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
-     {I::sourceImage, B::counters, B::exactList}},
+     {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::Light, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
-     {I::sourceImage}},
+     {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h), then copied back over
     // sourceImage and mediaExtinction for the integrate pass.
     {"temporal", "temporal", Variant::None, Dispatch::Froxels, When::Always, Record::TemporalCopy,

@@ -203,6 +203,9 @@ struct PassDecl {
     // Built with this frame's specialization constants (shaders/shared/specialization.h, pipeline.h
     // SpecKey): code for what the scene lacks is compiled out. Otherwise the shader's defaults.
     bool specialized = false;
+    // With `specialized`: the froxel passes' key, where the volumes out of this frame's froxel reach
+    // are listed as SPEC_CULLED_VOLUME (core/media_region.h froxelVolumesInReach).
+    bool culledVolumes = false;
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.

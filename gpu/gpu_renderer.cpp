@@ -159,6 +159,20 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     return k;
 }
 
+// The froxel passes' key: a volume out of the froxels' reach this frame listed as SPEC_CULLED_VOLUME,
+// so its terms (exactly 0) are compiled out rather than evaluated. A scene with too many volumes for
+// the list keeps every volume.
+SpecKey froxelSpecKey(SpecKey k, const std::vector<bool>& inReach) {
+    if (k[SpecId::SPEC_VOLUME_COUNT] < 0) return k;
+    for (size_t i = 0; i < inReach.size(); ++i) {
+        if (inReach[i]) continue;
+        const int at = static_cast<int>(i);
+        k[SpecId::SPEC_VOLUME_LIST] &= ~BRUME_SPEC_VOLUME_LIST_ENTRY(at, 7);
+        k[SpecId::SPEC_VOLUME_LIST] |= BRUME_SPEC_VOLUME_LIST_ENTRY(at, SPEC_CULLED_VOLUME);
+    }
+    return k;
+}
+
 }  // namespace
 
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
@@ -220,6 +234,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->spec = sceneSpecKey(cs, frame, lightReach);
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
+    s_->froxelSpec = froxelSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).

@@ -13,7 +13,7 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
         // Unrolled by hand with each volume's kind a constant: only that kind's closed form is
         // built for it (a loop would run every kind's code for every volume on lavapipe).
 #define BRUME_LISTED_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumes[i], p, toLight, distance);
+    if (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumes[i], p, toLight, distance);
         BRUME_LISTED_VOLUME(0) BRUME_LISTED_VOLUME(1) BRUME_LISTED_VOLUME(2) BRUME_LISTED_VOLUME(3)
         BRUME_LISTED_VOLUME(4) BRUME_LISTED_VOLUME(5) BRUME_LISTED_VOLUME(6) BRUME_LISTED_VOLUME(7)
         BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)

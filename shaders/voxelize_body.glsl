@@ -8,20 +8,36 @@
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
-MediaSample mediaAt(vec3 p) {
-    MediaSample m = emptyMedia();
-    for (int i = 0; i < frame.counts.z; ++i) {
-        if (!insideBounds(volumes[i], p)) continue;
+// Volume i (of kind k: a constant in pipelines specialized with the scene's volume list) at p.
+void addVolume(inout MediaSample m, int i, int k, vec3 p) {
+    if (!insideBounds(volumes[i], p)) return;
 #ifdef BRUME_VOXELIZE_VDB
-        float density = volumes[i].kind.x == VOLUME_VDB ? vdbDensity(volumes[i], p)
-                                                        : analyticDensity(volumes[i], p, frame.cameraPosition.xyz);
+    float density = BRUME_VOLUME_KIND_USED(VOLUME_VDB) && k == VOLUME_VDB
+                        ? vdbDensity(volumes[i], p)
+                        : analyticDensityOfKind(k, volumes[i], p, frame.cameraPosition.xyz);
 #else
-        float density = analyticDensity(volumes[i], p, frame.cameraPosition.xyz);
+    float density = analyticDensityOfKind(k, volumes[i], p, frame.cameraPosition.xyz);
 #endif
 #ifdef BRUME_VOXELIZE_TEXTURE
-        if (density > 0.0f) density *= densityTextureFactor(volumes[i], p);
+    if (density > 0.0f) density *= densityTextureFactor(volumes[i], p);
 #endif
-        m = addMedium(m, volumes[i], density);
+    m = addMedium(m, volumes[i], density);
+}
+
+MediaSample mediaAt(vec3 p) {
+    MediaSample m = emptyMedia();
+    if (SPEC_VOLUME_COUNT >= 0) {
+        // Unrolled by hand with each volume's kind a constant (fog_shadow.glsl does the same): only that
+        // kind's density is built for it; a loop would run every kind's code for every volume.
+#define BRUME_LISTED_VOLUME(i) \
+    if (i < SPEC_VOLUME_COUNT && BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i) != SPEC_CULLED_VOLUME) \
+        addVolume(m, i, BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i), p);
+        BRUME_LISTED_VOLUME(0) BRUME_LISTED_VOLUME(1) BRUME_LISTED_VOLUME(2) BRUME_LISTED_VOLUME(3)
+        BRUME_LISTED_VOLUME(4) BRUME_LISTED_VOLUME(5) BRUME_LISTED_VOLUME(6) BRUME_LISTED_VOLUME(7)
+        BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)
+#undef BRUME_LISTED_VOLUME
+    } else {
+        for (int i = 0; i < frame.counts.z; ++i) addVolume(m, i, volumes[i].kind.x, p);
     }
     return m;
 }

@@ -82,3 +82,81 @@ TEST(MediaRegion, FollowsTheContent) {
     EXPECT_EQ(r.lo, glm::ivec3(0));
     EXPECT_EQ(r.hi, glm::ivec3(f.froxelDims));
 }
+
+namespace {
+
+// The largest optical depth of volume 0 toward each light, and whether its bounds hold some sample,
+// over the froxels of a coarse sweep of the grid (every 3rd froxel per axis, two jitters).
+struct VolumeTerms {
+    float maxDepth = 0.0f;
+    bool holdsSample = false;
+};
+
+VolumeTerms volumeTerms(const CompiledScene& cs, const shd::FrameUniforms& f) {
+    VolumeTerms t;
+    const glm::ivec3 dims(f.froxelDims);
+    for (vec3 jitter : {vec3(0.0f), vec3(0.999f)})
+        for (int z = 0; z <= dims.z; z += 3)
+            for (int y = 0; y <= dims.y; y += 3)
+                for (int x = 0; x <= dims.x; x += 3) {
+                    const vec3 p = shd::worldFromFroxelCoord(glm::min(vec3(x, y, z) + jitter, vec3(dims)), f);
+                    t.holdsSample = t.holdsSample || shd::insideBounds(cs.volumes[0], p);
+                    for (const shd::LightData& l : cs.lights) {
+                        if (!shd::fogShadowsLight(l, f.localFogShadows)) continue;
+                        const shd::LightSample ls = shd::evalLight(l, p);
+                        const vec3 tau = shd::shadowOpticalDepth(cs.volumes[0], p, ls.toLight, ls.distance);
+                        t.maxDepth = std::max(t.maxDepth, std::max(tau.x, std::max(tau.y, tau.z)));
+                    }
+                }
+    return t;
+}
+
+}  // namespace
+
+// The froxel passes leave out a volume only when it adds exactly nothing to them: no sample point in
+// its bounds and no fog shadow through it. And they do leave out a box behind the camera that no
+// shadow ray from the view crosses.
+TEST(MediaRegion, VolumesOutOfReachAddNothingToTheFroxels) {
+    struct Case {
+        vec3 boxCentre;
+        vec3 sunDirection;  // the way the light travels
+        bool expectCulled;
+    };
+    const std::vector<Case> cases = {
+        {{0.0f, 1.0f, 20.0f}, {-0.8f, -0.35f, -0.3f}, true},   // behind the camera, sun from the side-front
+        {{0.0f, 1.0f, 20.0f}, {0.0f, -0.3f, -1.0f}, false},    // behind the camera, sun shining through it
+        {{0.0f, 1.0f, -200.0f}, {0.0f, -1.0f, 0.0f}, true},    // past the froxel far, sun from above
+        {{0.0f, 1.0f, -200.0f}, {0.0f, -0.2f, 1.0f}, false},   // past the froxel far, low sun behind it
+        {{0.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},      // in view
+        {{0.0f, 30.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},     // above the view, overhead sun
+        {{40.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, true},      // far to the side, overhead sun
+    };
+    int culled = 0;
+    for (size_t c = 0; c < cases.size(); ++c) {
+        Scene s = test::sceneWithTestView();
+        s.volumes = {test::boxFog(cases[c].boxCentre, {3.0f, 2.4f, 3.0f}, 0.35f, 0.5f, 0.02f)};
+        Light sun = makeLight(LightType::Directional);
+        sun.direction = glm::normalize(cases[c].sunDirection);
+        s.lights = {sun, test::pointLight({1.0f, 1.0f, 0.0f}, 6.0f, 5.0f)};
+        const CompiledScene cs = compileScene(s);
+        const shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
+        const std::vector<bool> inReach = froxelVolumesInReach(cs, f);
+        ASSERT_EQ(inReach.size(), 1u);
+        const VolumeTerms t = volumeTerms(cs, f);
+        if (!inReach[0]) {
+            ++culled;
+            EXPECT_FALSE(t.holdsSample) << "case " << c;
+            EXPECT_EQ(t.maxDepth, 0.0f) << "case " << c;
+        }
+        if (!cases[c].expectCulled)  // the cases kept do reach the froxels: the check above has teeth
+            EXPECT_TRUE(t.holdsSample || t.maxDepth > 0.0f) << "case " << c;
+        EXPECT_EQ(!inReach[0], cases[c].expectCulled) << "case " << c << ": holds a sample " << t.holdsSample
+                                                      << ", largest optical depth " << t.maxDepth;
+    }
+    EXPECT_GT(culled, 0);
+
+    // Unbounded fog is always in reach.
+    const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
+    const CompiledScene hc = compileScene(h);
+    EXPECT_TRUE(froxelVolumesInReach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
+}

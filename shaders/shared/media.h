@@ -56,15 +56,20 @@ BRUME_FUNC bool insideBounds(VolumeData v, vec3 p) {
            p.x <= v.worldMax.x && p.y <= v.worldMax.y && p.z <= v.worldMax.z;
 }
 
-// Density of an analytic volume at a world position (VDB volumes are sampled by their own code and
-// report 0 here).
-BRUME_FUNC float analyticDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
-    int k = v.kind.x;
-    if (k == VOLUME_BOX) return boxDensity(v, worldPos);
-    if (k == VOLUME_HEIGHT_EXPONENTIAL) return heightExponentialDensity(v, worldPos);
-    if (k == VOLUME_HEIGHT_LINEAR) return heightLinearDensity(v, worldPos);
-    if (k == VOLUME_DEPTH) return depthDensity(v, worldPos, cameraPos);
+// Density of an analytic volume of kind k (v's, a constant where the caller knows it: voxelize_body.glsl)
+// at a world position (VDB volumes are sampled by their own code and report 0 here).
+// BRUME_VOLUME_KIND_USED: a kind the scene lacks is compiled out of specialized pipelines.
+BRUME_FUNC float analyticDensityOfKind(int k, VolumeData v, vec3 worldPos, vec3 cameraPos) {
+    if (BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) return boxDensity(v, worldPos);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_EXPONENTIAL) && k == VOLUME_HEIGHT_EXPONENTIAL)
+        return heightExponentialDensity(v, worldPos);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_LINEAR) && k == VOLUME_HEIGHT_LINEAR) return heightLinearDensity(v, worldPos);
+    if (BRUME_VOLUME_KIND_USED(VOLUME_DEPTH) && k == VOLUME_DEPTH) return depthDensity(v, worldPos, cameraPos);
     return 0.0f;
+}
+
+BRUME_FUNC float analyticDensity(VolumeData v, vec3 worldPos, vec3 cameraPos) {
+    return analyticDensityOfKind(v.kind.x, v, worldPos, cameraPos);
 }
 
 struct MediaSample {

@@ -25,6 +25,9 @@
 #define SPEC_MAX_LISTED_VOLUMES 10
 #define BRUME_SPEC_VOLUME_LIST_ENTRY(i, kind) ((kind) << (3 * (i)))
 #define BRUME_SPEC_LISTED_KIND(list, i) (((list) >> (3 * (i))) & 7)
+// In the froxel passes' list only (gpu: RendererState::froxelSpec): volume i is out of their reach this
+// frame (core/media_region.h froxelVolumesInReach), its terms are exactly 0 and are left out.
+#define SPEC_CULLED_VOLUME 7
 
 #ifdef __cplusplus
 // The CPU evaluates every kind.
