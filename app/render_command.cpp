@@ -151,7 +151,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
         optionHelp(settings::render_quality, "the scene's render.quality (" + formatDefault(settings::render_quality) +
                                                  " if absent); the reference renderer ignores it"));
     o.frames = settings::cli_frames.i();
-    o.framesOption = cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames));
+    o.framesOption = cmd->add_option("--frames", o.frames, optionHelp(settings::cli_frames, "the scene's render.frames"));
     o.orbit = settings::cli_orbit.f();
     o.orbitOption = cmd->add_option("--orbit", o.orbit, optionHelp(settings::cli_orbit));
     o.time = settings::cli_time.f();
@@ -287,7 +287,7 @@ static RenderRequest requestFromOptions(const Scene& scene, const RenderOptions&
     if (o.widthOption->count() > 0) r.width = o.width;
     if (o.heightOption->count() > 0) r.height = o.height;
     if (o.qualityOption->count() > 0) parseQuality(o.quality, r.quality);
-    r.frames = o.frames;
+    r.frames = o.framesOption->count() > 0 ? o.frames : scene.render.frames;
     r.threads = o.threads;
     parseDebugView(o.debugView, r.debugView);
     r.debugSlice = o.debugSlice;

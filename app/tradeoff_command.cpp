@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <optional>
 #include <sstream>
+#include <variant>
 
 #include <unistd.h>
 
@@ -14,8 +15,8 @@
 
 #include "cli_text.h"
 #include "core/tradeoff.h"
+#include "tradeoff_measure.h"
 #include "io/atomic_file.h"
-#include "io/image_io.h"
 #include "io/scene_json.h"
 #include "progress.h"
 #include "render_command.h"
@@ -27,61 +28,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Bump when the reference renderer's output changes, so that old cache entries are not reused.
-constexpr const char* kReferenceVersion = "brume reference 1";
-
-uint64_t fnv1a(uint64_t h, std::string_view bytes) {
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-    return h;
-}
-
-// The scene's content: its canonical JSON, the image size, the reference's version and the bytes
-// of every file it reads (vdb volumes, density textures). The froxel settings (render block, froxels,
-// temporal) do not reach the reference, so editing them keeps the entry.
-uint64_t referenceKey(const Scene& scene, int width, int height) {
-    Scene content = scene;
-    content.render = Scene().render;
-    content.froxels = FroxelOverrides{};
-    content.temporal = Scene().temporal;
-    uint64_t h = 14695981039346656037ull;
-    h = fnv1a(h, kReferenceVersion);
-    h = fnv1a(h, sceneToJson(content));
-    h = fnv1a(h, std::to_string(width) + "x" + std::to_string(height));
-    auto addFile = [&](const std::string& file) {
-        if (file.empty()) return;
-        fs::path p(file);
-        if (p.is_relative()) p = fs::path(scene.baseDir) / p;
-        std::ifstream in(p, std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        h = fnv1a(h, bytes.str());
-    };
-    for (const Volume& v : scene.volumes) {
-        addFile(v.file);
-        if (v.density_texture) addFile(v.density_texture->file);
-    }
-    return h;
-}
-
-std::string defaultCacheDir() {
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/brume/references";
-    if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/brume/references";
-    return ".brume-cache/references";
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream ss(text);
-    for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
-    return out;
-}
-
 // Whether a file can be created at `path` (its folder exists and is writable), checked before the
 // long work so that a bad path fails in a second, not after the renders.
 bool writableOutput(const std::string& path) {
@@ -90,35 +36,6 @@ bool writableOutput(const std::string& path) {
     if (fs::is_directory(p, ec)) return false;
     const fs::path dir = p.parent_path();
     return fs::is_directory(dir, ec) && access(dir.c_str(), W_OK) == 0;
-}
-
-Result<Image> referenceImage(const Scene& scene, const RenderRequest& base, const std::string& cacheDir) {
-    char name[64];
-    std::snprintf(name, sizeof(name), "reference-%016llx.exr",
-                  static_cast<unsigned long long>(referenceKey(scene, base.width, base.height)));
-    const fs::path cached = fs::path(cacheDir) / name;
-    std::error_code ec;
-    if (fs::exists(cached, ec)) {
-        Result<Image> img = readExr(cached.string());
-        if (img && img.value().width == base.width && img.value().height == base.height) {
-            std::fprintf(stderr, "reference: cached (%s)\n", cached.string().c_str());
-            return img;
-        }
-    }
-    std::fprintf(stderr, "reference: not cached, rendering %dx%d\n", base.width, base.height);
-    RenderRequest req = base;
-    ProgressLine line("rendering the reference (once; cached by the scene's content)", true);
-    req.progress = [&line](float f) { line.update(f); };
-    Image ref = renderReference(scene, req);
-    line.complete();
-    // Written whole or not at all (temporary file, then rename): an interrupted reference leaves
-    // no cache entry. A cache that cannot be written costs the next run a render, nothing more.
-    fs::create_directories(cacheDir, ec);
-    if (Result<void> w = writeFileAtomic(cached.string(), [&ref](const std::string& tmp) { return writeExr(ref, tmp); });
-        !w) {
-        std::fprintf(stderr, "warning: reference not cached: %s\n", w.error().message.c_str());
-    }
-    return ref;
 }
 
 std::string percent(double f) {
@@ -130,18 +47,10 @@ std::string percent(double f) {
 // Error against milliseconds on log axes; the front drawn as a line, every point labelled.
 std::string chartSvg(const std::vector<TradeoffCandidate>& cands, const std::string& title) {
     const double W = 720, H = 480, left = 70, right = 20, top = 40, bottom = 60;
-    double msLo = 1e300, msHi = 0, eLo = 1e300, eHi = 0;
-    for (const TradeoffCandidate& c : cands) {
-        msLo = std::min(msLo, std::max(c.ms, 1e-3));
-        msHi = std::max(msHi, std::max(c.ms, 1e-3));
-        eLo = std::min(eLo, std::max(c.error.relMae, 1e-6));
-        eHi = std::max(eHi, std::max(c.error.relMae, 1e-6));
-    }
-    // Whole decades around the data, so the axes read as powers of ten.
-    const double x0 = std::floor(std::log10(msLo)), x1 = std::max(std::ceil(std::log10(msHi)), x0 + 1);
-    const double y0 = std::floor(std::log10(eLo)), y1 = std::max(std::ceil(std::log10(eHi)), y0 + 1);
-    auto px = [&](double ms) { return left + (std::log10(std::max(ms, 1e-3)) - x0) / (x1 - x0) * (W - left - right); };
-    auto py = [&](double e) { return H - bottom - (std::log10(std::max(e, 1e-6)) - y0) / (y1 - y0) * (H - top - bottom); };
+    const TradeoffChartAxes axes = tradeoffChartAxes(cands);
+    const double x0 = axes.msLog0, x1 = axes.msLog1, y0 = axes.errorLog0, y1 = axes.errorLog1;
+    auto px = [&](double ms) { return left + axes.x(ms) * (W - left - right); };
+    auto py = [&](double e) { return H - bottom - axes.y(e) * (H - top - bottom); };
     std::ostringstream s;
     s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
       << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
@@ -163,12 +72,8 @@ std::string chartSvg(const std::vector<TradeoffCandidate>& cands, const std::str
       << "\" text-anchor=\"middle\">time per image [ms] (log)</text>\n";
     s << "<text x=\"15\" y=\"" << (top + H - bottom) / 2 << "\" text-anchor=\"middle\" transform=\"rotate(-90 15 "
       << (top + H - bottom) / 2 << ")\">relative mean abs error (log)</text>\n";
-    std::vector<const TradeoffCandidate*> front;
-    for (const TradeoffCandidate& c : cands)
-        if (c.pareto) front.push_back(&c);
-    std::sort(front.begin(), front.end(), [](auto* a, auto* b) { return a->ms < b->ms; });
     s << "<polyline class=\"pareto-front\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"1.5\" points=\"";
-    for (const TradeoffCandidate* c : front) s << px(c->ms) << "," << py(c->error.relMae) << " ";
+    for (size_t i : paretoFrontByMs(cands)) s << px(cands[i].ms) << "," << py(cands[i].error.relMae) << " ";
     s << "\"/>\n";
     for (const TradeoffCandidate& c : cands) {
         const double x = px(c.ms), y = py(c.error.relMae);
@@ -243,30 +148,11 @@ CLI::App* addTradeoffCommand(CLI::App& app, TradeoffOptions& o) {
 
 CommandResult runTradeoff(const TradeoffOptions& o) {
     // Every argument is checked before the first render.
-    std::vector<Quality> qualities;
-    for (const std::string& q : splitList(o.qualities)) {
-        Quality parsed;
-        if (!parseQuality(q, parsed))
-            return badInput("--quality '" + q + "' is not one of " + std::string(settings::render_quality.choices) + ".");
-        qualities.push_back(parsed);
-    }
-    std::vector<int> frames;
-    for (const std::string& f : splitList(o.frames)) {
-        const bool digits = !f.empty() && f.size() <= 4 && std::all_of(f.begin(), f.end(), ::isdigit);
-        const int n = digits ? std::stoi(f) : 0;
-        if (n < settings::cli_frames.min || n > settings::cli_frames.max)
-            return badInput("--frames '" + f + "' is not a whole number in " + formatRange(settings::cli_frames) + ".");
-        frames.push_back(n);
-    }
-    std::vector<std::pair<int, int>> grids;
-    for (const std::string& g : o.grids) {
-        int tile = 0, slices = 0;
-        if (!parseGrid(g, tile, slices))
-            return badInput("--grid '" + g + "' is not TILExSLICES with tile 1..64 px and slices 1..1024 (e.g. 8x96).");
-        grids.push_back({tile, slices});
-    }
-    if (qualities.empty() && grids.empty()) return badInput("--quality is empty and no --grid given: nothing to measure.");
-    if (frames.empty()) return badInput("--frames is empty: nothing to measure.");
+    Result<measure::TradeoffPlan> parsed = measure::parsePlan(o.qualities, o.frames, o.grids);
+    if (!parsed) return badInput(parsed.error().message);
+    measure::TradeoffPlan plan = std::move(parsed.value());
+    plan.repeats = o.repeats;
+    plan.warmup = o.warmup;
     for (const std::string* out : {&o.svgPath, &o.jsonPath}) {
         if (!out->empty() && !writableOutput(*out))
             return badInput(*out + ": cannot be written (its folder does not exist or is not writable).");
@@ -287,56 +173,39 @@ CommandResult runTradeoff(const TradeoffOptions& o) {
     base.threads = o.threads;
     base.history = HistoryMode::Restart;
 
-    Result<Image> ref = referenceImage(scene, base, o.cacheDir.empty() ? defaultCacheDir() : o.cacheDir);
+    const std::string cacheDir = o.cacheDir.empty() ? measure::defaultCacheDir() : o.cacheDir;
+    const std::string cachePath = measure::referenceCachePath(scene, base.width, base.height, cacheDir);
+    std::error_code ec;
+    std::optional<ProgressLine> refLine;
+    if (fs::exists(cachePath, ec)) {
+        std::fprintf(stderr, "reference: cached (%s)\n", cachePath.c_str());
+    } else {
+        std::fprintf(stderr, "reference: not cached, rendering %dx%d\n", base.width, base.height);
+        refLine.emplace("rendering the reference (once; cached by the scene's content)", true);
+    }
+    Result<measure::ReferenceResult> ref = measure::referenceImage(
+        scene, base, cacheDir, refLine ? ProgressFn([&refLine](float f) { refLine->update(f); }) : ProgressFn());
+    if (refLine) ref ? refLine->complete() : refLine->end();
     if (!ref) return internalFailure(ref.error().message);
+    if (!ref.value().warning.empty()) std::fprintf(stderr, "warning: %s\n", ref.value().warning.c_str());
 
     const RendererKind kind = o.cpu ? RendererKind::FroxelCpu : RendererKind::Gpu;
     RenderSession session(kind, o.device);
     if (session.startFailure()) return badInput(session.startFailure()->message);
 
-    std::vector<TradeoffCandidate> cands;
-    auto add = [&cands](Quality q, int f, int tile, int slices) {
-        TradeoffCandidate c;
-        c.quality = q;
-        c.frames = f;
-        c.tilePx = tile;
-        c.slices = slices;
-        cands.push_back(c);
-    };
-    for (Quality q : qualities)
-        for (int f : frames) add(q, f, 0, 0);
-    for (auto [tile, slices] : grids)
-        for (int f : frames) add(base.quality, f, tile, slices);
+    std::vector<TradeoffCandidate> cands = measure::plannedCandidates(plan, base.quality);
     ProgressLine line("timing " + std::to_string(cands.size()) + " candidates", true);
     std::string device;
-    for (size_t i = 0; i < cands.size(); ++i) {
-        TradeoffCandidate& c = cands[i];
-        Scene s = scene;
-        s.temporal.enabled = true;
-        if (c.tilePx > 0) {
-            s.froxels.tile_px = c.tilePx;
-            s.froxels.slices = c.slices;
-        }
-        RenderRequest req = base;
-        req.quality = c.quality;
-        req.frames = c.frames;
-        std::vector<double> ms;
-        Image last;
-        for (int r = 0; r < o.warmup + o.repeats; ++r) {
-            std::variant<RenderOutput, RenderFailure> out = session.render(s, req);
-            if (const RenderFailure* f = std::get_if<RenderFailure>(&out))
-                return f->userCanFix ? badInput(f->message) : internalFailure(f->message);
-            RenderOutput& got = std::get<RenderOutput>(out);
-            device = got.stats.device;
-            if (r >= o.warmup) ms.push_back(got.stats.wallMs);
-            last = std::move(got.image);
-        }
-        c.ms = median(ms);
-        c.error = measureImageError(last, ref.value());
-        line.update(static_cast<float>(i + 1) / static_cast<float>(cands.size()));
-    }
+    auto render = [&](const Scene& s, const RenderRequest& req) -> Result<Image> {
+        std::variant<RenderOutput, RenderFailure> out = session.render(s, req);
+        if (const RenderFailure* f = std::get_if<RenderFailure>(&out)) return Error{f->message, f->userCanFix};
+        device = std::get<RenderOutput>(out).stats.device;
+        return std::move(std::get<RenderOutput>(out).image);
+    };
+    Result<void> measured = measure::measureCandidates(scene, base, ref.value().image, cands, o.warmup, o.repeats, render,
+                                                       [&](size_t k) { line.update(float(k) / float(cands.size())); });
+    if (!measured) return measured.error().badInput ? badInput(measured.error().message) : internalFailure(measured.error().message);
     line.complete();
-    markParetoFront(cands);
 
     std::printf("brume tradeoff: %s, %dx%d, %s renderer%s%s, median of %d after %d warm-up; error against the reference\n",
                 o.scenePath.c_str(), base.width, base.height, rendererName(kind), device.empty() ? "" : " on ",

@@ -537,10 +537,14 @@ Image render(const Scene& scene, const RenderRequest& request, const StepParams&
     Image img(request.width, request.height);
     const int rows = request.height;
     ProgressReporter progress(request.progress, rows);
-    auto done = [&progress](int finished) { progress.report(finished); };
+    // Rows skipped after a cancel are not progress.
+    auto done = [&](int finished) {
+        if (!request.cancel || !request.cancel->load(std::memory_order_relaxed)) progress.report(finished);
+    };
     parallelFor(
         rows, request.threads,
         [&](int y) {
+            if (request.cancel && request.cancel->load(std::memory_order_relaxed)) return;
             for (int x = 0; x < request.width; ++x) img.at(x, y) = tracer.radiance(x, y);
         },
         done);

@@ -3,6 +3,7 @@
 //   renderFroxelCpu: the froxel algorithm (voxelize, light, integrate, composite): the GPU's oracle.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,6 +35,9 @@ struct RenderRequest {
     bool vdbShadows = true;    // froxel renderers: vdb volumes in the fog shadows (core/vdb_shadow.h)
     bool vdbCulling = true;    // froxel renderers: skip grid walks in empty occupancy cells (core/vdb_shadow.h)
     ProgressFn progress;   // optional
+    // Reference renderer: once set, rows not yet started are skipped and the image is incomplete
+    // (the caller, which set it, throws the image away). Lets the editor cancel a long reference.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 // Request from the scene's own render block.

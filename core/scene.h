@@ -48,6 +48,7 @@ struct RenderBlock {
     int width = settings::render_width.i();
     int height = settings::render_height.i();
     Quality quality = static_cast<Quality>(settings::render_quality.i());
+    int frames = settings::render_frames.i();
     bool operator==(const RenderBlock&) const = default;
 };
 

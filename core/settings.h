@@ -44,6 +44,7 @@ inline constexpr Setting camera_far       {"camera.far", K::Number, "m", 1e-3, 1
 inline constexpr Setting render_width     {"render.width", K::Integer, "px", 1, 16384, {640}, "", "Image width."};
 inline constexpr Setting render_height    {"render.height", K::Integer, "px", 1, 16384, {360}, "", "Image height."};
 inline constexpr Setting render_quality   {"render.quality", K::Choice, "", 0, 0, {2}, "low|medium|high|ultra", "Froxel quality preset (see docs/quality.md)."};
+inline constexpr Setting render_frames    {"render.frames", K::Integer, "", 1, 1024, {1}, "", "Frames brume render accumulates (temporal) when --frames is not given; the editor's Quality panel sets it with the preset."};
 
 inline constexpr Setting froxels_tile_px  {"froxels.tile_px", K::Integer, "px", 1, 64, {8}, "", "Screen tile covered by one froxel column (overrides the preset)."};
 inline constexpr Setting froxels_slices   {"froxels.slices", K::Integer, "", 1, 1024, {64}, "", "Number of depth slices (overrides the preset)."};
@@ -129,7 +130,7 @@ inline constexpr Setting geometry_emission {"geometry[].emission", K::Vec3, "W/(
 
 inline constexpr std::array kAll = {
     &camera_position, &camera_target, &camera_up, &camera_fov_y, &camera_near, &camera_far,
-    &render_width, &render_height, &render_quality,
+    &render_width, &render_height, &render_quality, &render_frames,
     &froxels_tile_px, &froxels_slices, &froxels_near, &froxels_far, &froxels_distribution,
     &temporal_enabled, &temporal_history_weight, &ambient,
     &light_type, &light_name, &light_direction, &light_position, &light_color,

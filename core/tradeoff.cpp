@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "settings.h"
@@ -75,6 +76,78 @@ int mostAccurateUnderBudget(const std::vector<TradeoffCandidate>& candidates, do
         if (best < 0 || c.error.relMae < candidates[static_cast<size_t>(best)].error.relMae) best = static_cast<int>(i);
     }
     return best;
+}
+
+TradeoffChartAxes tradeoffChartAxes(const std::vector<TradeoffCandidate>& cands) {
+    double msLo = 1e300, msHi = 0, eLo = 1e300, eHi = 0;
+    for (const TradeoffCandidate& c : cands) {
+        msLo = std::min(msLo, std::max(c.ms, 1e-3));
+        msHi = std::max(msHi, std::max(c.ms, 1e-3));
+        eLo = std::min(eLo, std::max(c.error.relMae, 1e-6));
+        eHi = std::max(eHi, std::max(c.error.relMae, 1e-6));
+    }
+    TradeoffChartAxes a;
+    if (cands.empty()) return a;
+    a.msLog0 = std::floor(std::log10(msLo));
+    a.msLog1 = std::max(std::ceil(std::log10(msHi)), a.msLog0 + 1);
+    a.errorLog0 = std::floor(std::log10(eLo));
+    a.errorLog1 = std::max(std::ceil(std::log10(eHi)), a.errorLog0 + 1);
+    return a;
+}
+
+double TradeoffChartAxes::x(double ms) const { return (std::log10(std::max(ms, 1e-3)) - msLog0) / (msLog1 - msLog0); }
+double TradeoffChartAxes::y(double e) const {
+    return (std::log10(std::max(e, 1e-6)) - errorLog0) / (errorLog1 - errorLog0);
+}
+
+std::vector<size_t> paretoFrontByMs(const std::vector<TradeoffCandidate>& cands) {
+    std::vector<size_t> front;
+    for (size_t i = 0; i < cands.size(); ++i)
+        if (cands[i].pareto) front.push_back(i);
+    std::sort(front.begin(), front.end(), [&cands](size_t a, size_t b) { return cands[a].ms < cands[b].ms; });
+    return front;
+}
+
+ErrorMap pixelErrorMap(const Image& img, const Image& ref) {
+    if (img.width != ref.width || img.height != ref.height) throw std::invalid_argument("image sizes differ");
+    double refSum = 0.0;
+    for (const glm::vec3& p : ref.pixels) refSum += std::abs(double(p.x)) + std::abs(double(p.y)) + std::abs(double(p.z));
+    const double refMean = refSum / std::max<double>(1.0, 3.0 * static_cast<double>(ref.pixels.size()));
+    ErrorMap m;
+    m.width = img.width;
+    m.height = img.height;
+    m.values.resize(img.pixels.size());
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        const glm::dvec3 d = glm::abs(glm::dvec3(img.pixels[i]) - glm::dvec3(ref.pixels[i]));
+        const double e = (d.x + d.y + d.z) / 3.0;
+        m.values[i] = static_cast<float>(refMean > 0.0 ? e / refMean : e);
+    }
+    m.scale = heatMapScale(m.values);
+    return m;
+}
+
+float heatMapScale(const std::vector<float>& values) {
+    double p99 = 0.0;
+    if (!values.empty()) {
+        std::vector<float> v = values;
+        const size_t rank = static_cast<size_t>(std::ceil(0.99 * static_cast<double>(v.size())));
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(rank - 1), v.end());
+        p99 = v[rank - 1];
+    }
+    p99 = std::max(p99, 1e-4);
+    const double decade = std::pow(10.0, std::floor(std::log10(p99)));
+    for (double step : {1.0, 2.0, 5.0, 10.0})
+        if (step * decade >= p99 * (1.0 - 1e-6)) return static_cast<float>(step * decade);
+    return static_cast<float>(10.0 * decade);
+}
+
+glm::vec3 heatMapColor(float t) {
+    static const glm::vec3 stops[] = {{0.0f, 0.0f, 0.0f}, {0.35f, 0.05f, 0.55f}, {0.85f, 0.15f, 0.25f},
+                                      {1.0f, 0.55f, 0.0f}, {1.0f, 1.0f, 0.7f}};
+    constexpr int n = static_cast<int>(std::size(stops));
+    const float x = std::clamp(std::isfinite(t) ? t : 1.0f, 0.0f, 1.0f) * static_cast<float>(n - 1);
+    const int i = std::min(static_cast<int>(x), n - 2);
+    return glm::mix(stops[i], stops[i + 1], x - static_cast<float>(i));
 }
 
 bool parseGrid(const std::string& text, int& tilePx, int& slices) {

@@ -46,6 +46,37 @@ int fastestUnderError(const std::vector<TradeoffCandidate>& candidates, double m
 // Index of the most accurate candidate whose ms <= budgetMs, or -1 when none is.
 int mostAccurateUnderBudget(const std::vector<TradeoffCandidate>& candidates, double budgetMs);
 
+// The chart's log axes (the SVG of `brume tradeoff --svg` and the editor's Quality panel): whole
+// decades of ms and of relMae around the candidates, so the axes read as powers of ten.
+struct TradeoffChartAxes {
+    double msLog0 = 0.0, msLog1 = 1.0;        // log10 of the ms axis' ends
+    double errorLog0 = -3.0, errorLog1 = -2.0;  // log10 of the error axis' ends
+    double x(double ms) const;     // 0 at the left end, 1 at the right
+    double y(double error) const;  // 0 at the bottom, 1 at the top
+};
+TradeoffChartAxes tradeoffChartAxes(const std::vector<TradeoffCandidate>& candidates);
+// The indices of the Pareto front's candidates in order of ms (the line the chart draws).
+std::vector<size_t> paretoFrontByMs(const std::vector<TradeoffCandidate>& candidates);
+
+// Where the error is (the editor's "error" debug view, docs/quality.md): per pixel, the mean over
+// rgb of |img - ref| divided by the whole reference's mean |ref|, the tiles' normalisation, so the
+// map's mean is the image's relMae and a value reads as "this pixel is off by x% of the scene's
+// mean brightness".
+struct ErrorMap {
+    int width = 0;
+    int height = 0;
+    std::vector<float> values;  // row-major from the top-left
+    float scale = 0.0f;         // the legend's top: heatMapScale(values)
+};
+ErrorMap pixelErrorMap(const Image& img, const Image& ref);
+
+// The legend's top: the 99th percentile of `values` rounded up to 1, 2 or 5 times a power of ten,
+// so a few hot pixels do not wash out the ramp and its end reads as a round number; at least 1e-4.
+float heatMapScale(const std::vector<float>& values);
+
+// The ramp: black at 0, through purple, red and orange, to pale yellow at t >= 1.
+glm::vec3 heatMapColor(float t);
+
 // "TILExSLICES" (e.g. "8x96") into tile and slices within the ranges of froxels.tile_px and
 // froxels.slices (core/settings.h); false when malformed or out of range.
 bool parseGrid(const std::string& text, int& tilePx, int& slices);

@@ -384,6 +384,7 @@ void readRender(Ctx& c, Obj& o, RenderBlock& r) {
     readInt(c, o, st::render_width, r.width);
     readInt(c, o, st::render_height, r.height);
     readEnum<Quality, 4>(c, o, st::render_quality, r.quality);
+    readInt(c, o, st::render_frames, r.frames);
 }
 
 template <class T>
@@ -1047,6 +1048,8 @@ ojson sceneJson(const Scene& s) {
     j["camera"] = {{"position", vec(cam.position)}, {"target", vec(cam.target)}, {"up", vec(cam.up)},
                    {"fov_y_deg", num(cam.fov_y_deg)}, {"near", num(cam.near)}, {"far", num(cam.far)}};
     j["render"] = {{"width", s.render.width}, {"height", s.render.height}, {"quality", toString(s.render.quality)}};
+    // Written only when set, so scenes that never chose it read as before.
+    if (s.render.frames != settings::render_frames.i()) j["render"]["frames"] = s.render.frames;
     if (const ojson f = froxelsJson(s.froxels); !f.empty()) j["froxels"] = f;
     j["temporal"] = {{"enabled", s.temporal.enabled}, {"history_weight", num(s.temporal.history_weight)}};
     j["ambient"] = vec(s.ambient);

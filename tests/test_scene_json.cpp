@@ -489,7 +489,7 @@ TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
         {R"({"brume_scene": 1, "camera": {"fov": 40}})",
          "scene.json: camera.fov: unknown key; allowed in camera: position, target, up, fov_y_deg, near, far"},
         {R"({"brume_scene": 1, "render": {"widht": 40}})",
-         "scene.json: render.widht: unknown key (did you mean \"width\"?); allowed in render: width, height, quality"},
+         "scene.json: render.widht: unknown key (did you mean \"width\"?); allowed in render: width, height, quality, frames"},
         {R"({"brume_scene": 1, "froxels": {"tiles": 4}})",
          "scene.json: froxels.tiles: unknown key; allowed in froxels: tile_px, slices, near, far, distribution"},
         {R"({"brume_scene": 1, "temporal": {"weight": 0.5}})",

@@ -9,6 +9,7 @@
 
 #include "core/debug_view.h"
 #include "core/quality.h"
+#include "quality_panel.h"
 
 namespace brume::editor {
 namespace {
@@ -41,11 +42,14 @@ void debugSection(Editor& e, double now) {
     DebugViewState& d = e.debugView();
     ImGui::Separator();
     ImGui::TextUnformatted("Debug");
-    const char* views[] = {"final", "density slice", "scattering slice", "transmittance slice"};
-    int view = d.view;
-    if (ImGui::Combo("view", &view, views, 4)) run(e, std::string("debug ") + debugViewName(view), now);
+    const char* views[] = {"final", "density slice", "scattering slice", "transmittance slice", "error heat map"};
+    constexpr int kErrorEntry = 4;  // the final image under its error against the reference (quality_panel.h)
+    int view = d.errorMap ? kErrorEntry : d.view;
+    if (ImGui::Combo("view", &view, views, 5))
+        run(e, view == kErrorEntry ? std::string("debug error") : std::string("debug ") + debugViewName(view), now);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("One depth slice of a froxel volume instead of the image (docs/editor.md, Debug views).");
+        ImGui::SetTooltip("One depth slice of a froxel volume instead of the image, or where the image differs from "
+                          "the reference (docs/editor.md, Debug views).");
     const int slices = e.lastRender() ? e.lastRender()->dims.z : 1;
     int slice = std::min(d.slice, slices - 1);
     if (ImGui::SliderInt("slice", &slice, 0, slices - 1)) run(e, "debug slice " + std::to_string(slice), now);
@@ -56,6 +60,7 @@ void debugSection(Editor& e, double now) {
     if (ImGui::SliderFloat("depth [m]", &depth, 0.0f, fs.far, "%.2f")) run(e, "debug depth " + std::to_string(depth), now);
     bool grid = d.grid;
     if (ImGui::Checkbox("froxel grid", &grid)) run(e, std::string("debug grid ") + (grid ? "on" : "off"), now);
+    if (d.errorMap) heatMapLegend(e, now);
     if (d.view != shd::DEBUG_VIEW_FINAL) {
         ImGui::TextWrapped("%s", d.legend.c_str());
         rampStrip(d.view);

@@ -10,8 +10,8 @@ namespace brume::editor {
 namespace {
 
 constexpr const char* kUsage =
-    "debug takes: debug final|density|scattering|transmittance [SLICE], debug slice SLICE, debug depth METRES "
-    "or debug grid on|off.";
+    "debug takes: debug final|density|scattering|transmittance [SLICE], debug error, debug slice SLICE, debug depth "
+    "METRES or debug grid on|off.";
 
 bool sliceNumber(const std::string& s, int& out) {
     const char* end = s.data() + s.size();
@@ -36,6 +36,12 @@ Result<void> runDebugAction(DebugViewState& state, const Action& a, const Froxel
         state.grid = w[1] == "on";
         return {};
     }
+    if (w[0] == "error") {
+        if (w.size() != 1) return Error{kUsage};
+        state.view = shd::DEBUG_VIEW_FINAL;
+        state.errorMap = true;
+        return {};
+    }
     int slice = state.slice;
     if (w[0] == "depth") {
         double z = 0.0;
@@ -57,6 +63,7 @@ Result<void> runDebugAction(DebugViewState& state, const Action& a, const Froxel
         return Error{"debug: \"" + w[1] + "\" is not a slice in [0, 4095]."};
     state.view = view;
     state.slice = slice;
+    state.errorMap = false;
     return {};
 }
 

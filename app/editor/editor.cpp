@@ -11,6 +11,7 @@
 #include "core/debug_view.h"
 #include "core/quality.h"
 #include "preset_shelf.h"
+#include "quality_panel.h"
 #include "gpu/vk_check.h"
 #include "tonemap.h"
 #include "view.h"
@@ -87,7 +88,12 @@ Result<void> Editor::dispatch(const Action& a) {
         quality_ = q;
         return {};
     }
-    if (a.verb == "debug") return runDebugAction(debug_, a, resolveFroxelSettings(doc_.scene(), quality_));
+    if (a.verb == "debug") {
+        Result<void> r = runDebugAction(debug_, a, resolveFroxelSettings(doc_.scene(), quality_));
+        if (r && debug_.errorMap) requestHeatMap(*this);  // debug error: the heat map (quality_panel.h)
+        return r;
+    }
+    if (a.verb == "tradeoff") return runQualityAction(*this, a);
     if (a.verb == "wait") {
         if (a.args.size() != 1 || !number(a.args[0], v) || v < 0) return Error{"wait takes a number of seconds."};
         waitSeconds = v;

@@ -16,6 +16,7 @@
 #include "files.h"
 #include "gizmo_math.h"
 #include "gpu/gpu_renderer.h"
+#include "quality_job.h"
 #include "scene_time.h"
 
 namespace brume::editor {
@@ -50,6 +51,7 @@ public:
     //   time SECONDS, play on|off   (the view's scene time and its clock; scene_time.h)
     //   preset apply FILE replace|add, preset save NAME [DESCRIPTION [TAG...]]   (preset_shelf.h)
     //   new [--discard], open PATH [--discard], import vdb PATH   (files.h; Save goes on to Document)
+    //   tradeoff ... (the Quality panel and its measurement, quality_panel.h)
     //   drop PATH...   (files dropped on the window: a .vdb is imported, a .json opened, after the
     //                  unsaved-changes prompt; failures become notifications, never a script error)
     Result<void> run(const Action& action);
@@ -98,6 +100,9 @@ public:
     std::string screenshotRequest;
     GizmoMode gizmoMode = GizmoMode::Translate;
     std::string pendingOpen;  // a dropped scene waiting for the unsaved-changes prompt
+    // Set by an action a script must wait on (tradeoff wait): the script resumes once it returns true.
+    std::function<bool()> waitUntil;
+    QualityTool qualityTool;  // the Quality panel's measurement (quality_panel.h)
     double frameMs = 0.0;
     float viewAspect = 16.0f / 9.0f;  // for pick before the first render
 

@@ -156,6 +156,8 @@ void onDrop(GLFWwindow*, int count, const char** paths) {
 // each edit is rendered like a user's. Returns an error naming the script line.
 Result<void> stepScript(Script& script, Editor& editor, double now) {
     while (script.next < script.lines.size() && now >= script.resumeAt) {
+        if (editor.waitUntil && !editor.waitUntil()) break;  // tradeoff wait: the measurement runs on
+        editor.waitUntil = nullptr;
         const size_t n = script.next++;
         const std::string& line = script.lines[n];
         editor.waitSeconds = 0.0;
@@ -312,6 +314,23 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
     return 0;
 }
 
+// The Quality panel's GPU renderer: its own device (the same choice and validation as the
+// window's), created, used and destroyed on the panel's worker thread (quality_job.h).
+RendererFactory qualityPanelGpu(const Options& o) {
+    return [device = o.device, validation = o.validation]() -> Result<measure::CandidateRender> {
+        Result<std::unique_ptr<gpu::GpuRenderer>> made = gpu::GpuRenderer::create(gpu::GpuOptions{device, validation, {}});
+        if (!made) return made.error();
+        std::shared_ptr<gpu::GpuRenderer> r = std::move(made.value());
+        return measure::CandidateRender([r](const Scene& s, const RenderRequest& q) -> Result<Image> {
+            Result<gpu::GpuRender> out = r->render(s, q);
+            if (!out) return out.error();
+            if (const std::vector<std::string> m = r->validationMessages(); !m.empty())
+                return Error{"The Quality panel's renderer: validation: " + m.front()};
+            return std::move(out.value().image);
+        });
+    };
+}
+
 }  // namespace
 
 int runEditor(const Options& o) {
@@ -375,6 +394,7 @@ int runEditor(const Options& o) {
         // A named device that is not there is bad input (as for `brume render --device`).
         const bool named = !o.device.empty() || std::getenv("BRUME_DEVICE");
         if (!renderer) return fail(renderer.error().message, named ? 2 : 1);
+        editor.qualityTool.gpu = qualityPanelGpu(o);
         Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, renderer.value()->device());
         if (!presenter) return fail(presenter.error().message, 1);
         code = editorLoop(o, editor, *presenter.value(), *renderer.value(), script.value(), loop);

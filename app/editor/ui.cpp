@@ -13,6 +13,7 @@
 #include "core/settings.h"
 #include "debug_panel.h"
 #include "gizmo.h"
+#include "quality_panel.h"
 #include "view.h"
 #include "io/scene_json.h"
 
@@ -327,6 +328,7 @@ void menuBar(Editor& e, UiState& ui, double now) {
             ImGui::MenuItem("Help", "F1", &ui.showHelp);
             ImGui::MenuItem("Presets", nullptr, &ui.presets.show);
             ImGui::MenuItem("Timeline", nullptr, &ui.timeline.show);
+            ImGui::MenuItem("Quality", nullptr, &e.qualityTool.show);
             ImGui::EndMenu();
         }
         const std::string title = (e.doc().path().empty() ? std::string("untitled") : e.doc().path()) + (e.doc().dirty() ? " *" : "");
@@ -394,6 +396,8 @@ void drawUi(Editor& e, UiState& ui, double now) {
     inspector(e, now);
     stats(e, ui, now);
     froxelGridOverlay(e);
+    heatMapOverlay(e);
+    drawQualityPanel(e, now);
     drawPresetsPanel(e, ui.presets, now);
     drawTimelinePanel(e, ui.timeline, now);
     help(ui);
