@@ -4,6 +4,7 @@
 // renderer and the reference; meshes with holes and bad files are refused in one sentence (exit 2).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -217,6 +218,78 @@ TEST_F(Mesh, VoxelSizeFollowsTheFadeWithinTheCaps) {
     EXPECT_NEAR(integral, 3.0, 1e-3);
 }
 
+// height_falloff inside a hull (issue 15: "inside any local volume"): the density is the hull's times
+// exp(-k (y - bottom)) at every sampled point, bottom the lowest world point of the grid's bounds,
+// which lies at most two world voxels below the rotated cube's lowest corner.
+TEST_F(Mesh, HeightFalloffMultipliesTheHullFromTheBottomOfItsBounds) {
+    const float k = 0.8f, fade = 0.2f;
+    const CubePair p = cubePair(write("cube.obj", test::cubeObj()), fade);
+    ASSERT_TRUE(p.mesh.density);
+    Volume falling = p.mesh;
+    falling.height_falloff = k;
+    Scene s;
+    s.volumes = {falling, p.mesh};
+    const CompiledScene cs = compileScene(s);
+    const glm::mat4 worldFromLocal = p.mesh.transform.worldFromLocal();
+    float lowest = 1e30f;
+    for (int i = 0; i < 8; ++i)
+        lowest = std::min(lowest, (worldFromLocal * glm::vec4((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1, 1)).y);
+    const float bottom = cs.volumes[0].worldMin.y;
+    const float worldVoxel = meshVoxelSize(2.0f, fade) * 1.3f;  // the largest scale
+    std::printf("hull bottom %.4f, lowest corner %.4f (world voxel <= %.4f)\n", bottom, lowest, worldVoxel);
+    EXPECT_LE(bottom, lowest);
+    EXPECT_GE(bottom, lowest - 2.0f * worldVoxel);
+    int inside = 0;
+    for (float x = -1.1f; x <= 1.1f; x += 0.13f)
+        for (float y = -1.1f; y <= 1.1f; y += 0.11f)
+            for (float z = -1.1f; z <= 1.1f; z += 0.17f) {
+                const glm::vec3 w = glm::vec3(worldFromLocal * glm::vec4(x, y, z, 1.0f));
+                const double flat = volumeDensity(cs, 1, w);
+                const double expected = flat * std::exp(-double(k) * (double(w.y) - double(bottom)));
+                EXPECT_NEAR(volumeDensity(cs, 0, w), expected, 1e-5 + 1e-5 * expected) << x << " " << y << " " << z;
+                inside += flat > 0.5 ? 1 : 0;
+            }
+    EXPECT_GT(inside, 500);
+    // A hull's falloff is keyable and round-trips through the scene format.
+    Result<Scene> parsed = parseScene(R"({"brume_scene": 1, "volumes": [{"type": "mesh", "file": "h.obj", "height_falloff": 0.8,
+        "keys": {"height_falloff": [{"time": 0, "value": 0.5}, {"time": 1, "value": 1}]}},
+        {"type": "vdb", "file": "g.vdb", "height_falloff": 2}]})", "s.json");
+    ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+    EXPECT_EQ(parsed.value().volumes[0].height_falloff, 0.8f);
+    EXPECT_EQ(parsed.value().volumes[1].height_falloff, 2.0f);
+    Result<Scene> again = parseScene(sceneToJson(parsed.value()), "s.json");
+    ASSERT_TRUE(again.ok()) << again.error().message;
+    EXPECT_EQ(again.value(), parsed.value());
+    Result<Scene> negative = parseScene(R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": "g.vdb", "height_falloff": -1}]})", "s.json");
+    ASSERT_FALSE(negative.ok());
+    EXPECT_NE(negative.error().message.find("volumes[0].height_falloff"), std::string::npos) << negative.error().message;
+}
+
+// The hull with height_falloff, lit by a sun, in the CPU froxel renderer against the reference (both
+// march the same falling density, the froxel renderer into its vdb shadow layer), as close as the
+// hull without falloff (the 3% bound of the shapes' scene, tests/test_shapes.cpp), and the falloff
+// changes the image (so the test can fail).
+TEST_F(Mesh, HeightFalloffInsideTheHullFroxelMatchesTheReference) {
+    const CubePair p = cubePair(write("cube.obj", test::cubeObj()), 0.2f);
+    ASSERT_TRUE(p.mesh.density);
+    RenderRequest request;
+    request.width = 96;
+    request.height = 54;
+    request.threads = 2;
+    request.quality = Quality::High;
+    Volume falling = p.mesh;
+    falling.height_falloff = 2.0f;
+    const Scene flat = sceneWith(p.mesh), fall = sceneWith(falling);
+    const Image refFall = renderReference(fall, request);
+    const double err = relativeMeanAbsError(renderFroxelCpu(fall, request).image, refFall);
+    const double errFlat = relativeMeanAbsError(renderFroxelCpu(flat, request).image, renderReference(flat, request));
+    const double share = relativeMeanAbsError(renderReference(flat, request), refFall);
+    std::printf("hull with height_falloff: froxel (high) vs reference %.4f (without falloff %.4f); the falloff's share %.3f\n",
+                err, errFlat, share);
+    EXPECT_LT(err, 0.03);
+    EXPECT_GT(share, 0.05);
+}
+
 // ---- rendering: the cube hull against the equal box ----
 
 // The froxel renderer marches vdb grids (so the hull) into its fog shadow volume, where a box's fog
@@ -321,3 +394,4 @@ TEST_F(Mesh, BakeWritesTheHullsSigmaT) {
     EXPECT_NEAR(at({0.5f, -0.6f, 0.3f}), 0.75f, 1e-4);
     EXPECT_EQ(at({1.5f, 0.0f, 0.0f}), 0.0f);
 }
+
