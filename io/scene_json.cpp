@@ -618,7 +618,7 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
             readFloat(c, o, st::volume_height_falloff, vol.height_falloff);
             break;
         case VolumeType::Mesh:
-            readString(c, o, st::volume_mesh_file, vol.file, Text::NonEmpty, "the mesh file (OBJ) of a mesh volume");
+            readString(c, o, st::volume_mesh_file, vol.file, Text::NonEmpty, "the mesh file (OBJ or PLY) of a mesh volume");
             readFloat(c, o, st::volume_edge_fade_m, vol.edge_fade_m);
             readTransform(c, o, vol.transform);
             readFloat(c, o, st::volume_height_falloff, vol.height_falloff);
