@@ -296,7 +296,9 @@ static RenderRequest requestFromOptions(const Scene& scene, const RenderOptions&
 
 static bool scrollsTextures(const Scene& scene) {
     for (const Volume& v : scene.volumes)
-        if (v.density_texture && v.density_texture->scroll_mps != glm::vec3(0.0f)) return true;
+        if (v.density_texture && (v.density_texture->scroll_mps != glm::vec3(0.0f) ||
+                                  (v.density_texture->detail && v.density_texture->detail->scroll_mps != glm::vec3(0.0f))))
+            return true;
     return false;
 }
 

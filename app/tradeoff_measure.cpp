@@ -52,6 +52,7 @@ uint64_t referenceKey(const Scene& scene, int width, int height) {
     for (const Volume& v : scene.volumes) {
         addFile(v.file);
         if (v.density_texture) addFile(v.density_texture->file);
+        if (v.density_texture && v.density_texture->detail) addFile(v.density_texture->detail->file);
     }
     return h;
 }

@@ -34,7 +34,7 @@ constexpr unsigned kLocal = bit(LightType::Point) | bit(LightType::Spot);
 // computed once, at load) and file names.
 const std::array<Target<Volume>, 17> kVolumeTargets = {{
     {&st::volume_edge_fade, kShapes, [](Volume& v) { return &v.edge_fade; }},
-    {&st::volume_height_falloff, kShapes, [](Volume& v) { return &v.height_falloff; }},
+    {&st::volume_height_falloff, kShapes | bit(VolumeType::Vdb) | bit(VolumeType::Mesh), [](Volume& v) { return &v.height_falloff; }},
     {&st::volume_base_height, bit(VolumeType::Height), [](Volume& v) { return &v.base_height; }},
     {&st::volume_falloff, bit(VolumeType::Height), [](Volume& v) { return &v.falloff; }},
     {&st::volume_transition_height, bit(VolumeType::Height), [](Volume& v) { return &v.transition_height; }},

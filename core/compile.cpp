@@ -76,20 +76,30 @@ static void compileVdb(const Volume& v, shd::VolumeData& d) {
     // The shortest world length of a voxel edge: the reference's step limit inside the grid.
     d.params.y = std::min({glm::length(glm::vec3(worldFromIndex[0])), glm::length(glm::vec3(worldFromIndex[1])),
                            glm::length(glm::vec3(worldFromIndex[2]))});
+    // height_falloff, as a box's: 1 at the bottom of the grid's world bounds.
+    d.params.z = std::max(v.height_falloff, 0.0f);
+    d.params.w = d.worldMin.y;
 }
 
-// Tile and scroll as written; the grid's active box and mean from the loaded grid. A texture that is
-// not loaded, empty, or has no positive mean is left out (factor 1).
+// A layer's tile and scroll as written; the grid's active box and mean from the loaded grid. False
+// (nothing written) for a layer that is not loaded, empty, or has no positive mean (factor 1).
+static bool compileLayer(const TextureLayer& t, glm::vec4& params, glm::vec4& scroll, glm::ivec4& boxMin, glm::ivec4& boxSize) {
+    if (!t.density || t.density->empty() || !(t.mean > 0.0f) || !(t.tile_size_m > 0.0f)) return false;
+    const glm::ivec3 lo = glm::ivec3(t.density->indexMin()) + 1;  // indexMin/Max are grown by one voxel
+    const glm::ivec3 hi = glm::ivec3(t.density->indexMax()) - 1;
+    params = glm::vec4(1.0f / t.tile_size_m, t.strength, 1.0f / t.mean, std::max(t.exponent, 0.0f));
+    scroll = glm::vec4(t.scroll_mps, 0.0f);
+    boxMin = glm::ivec4(lo, 0);
+    boxSize = glm::ivec4(hi - lo + 1, 1);
+    return true;
+}
+
+// The texture, then its detail layer (only with a texture: the detail multiplies the texture's factor).
 static void compileTexture(const Volume& v, shd::VolumeData& d) {
     if (!v.density_texture) return;
     const DensityTexture& t = *v.density_texture;
-    if (!t.density || t.density->empty() || !(t.mean > 0.0f) || !(t.tile_size_m > 0.0f)) return;
-    const glm::ivec3 lo = glm::ivec3(t.density->indexMin()) + 1;  // indexMin/Max are grown by one voxel
-    const glm::ivec3 hi = glm::ivec3(t.density->indexMax()) - 1;
-    d.textureParams = glm::vec4(1.0f / t.tile_size_m, t.strength, 1.0f / t.mean, std::max(t.exponent, 0.0f));
-    d.textureScroll = glm::vec4(t.scroll_mps, 0.0f);
-    d.textureMin = glm::ivec4(lo, 0);
-    d.textureSize = glm::ivec4(hi - lo + 1, 1);
+    if (!compileLayer(t, d.textureParams, d.textureScroll, d.textureMin, d.textureSize)) return;
+    if (t.detail) compileLayer(*t.detail, d.detailParams, d.detailScroll, d.detailMin, d.detailSize);
 }
 
 shd::VolumeData compileVolume(const Volume& v) {
@@ -187,6 +197,14 @@ CompiledScene compileScene(const Scene& scene) {
         }
         cs.textures.push_back(textured ? scene.volumes[i].density_texture->density : nullptr);
     }
+    for (size_t i = 0; i < scene.volumes.size(); ++i) {
+        const bool detailed = shd::hasDetailTexture(cs.volumes[i]);
+        if (detailed) {
+            cs.volumes[i].detailMin.w = static_cast<int>(gridOffset);
+            gridOffset += scene.volumes[i].density_texture->detail->density->size();
+        }
+        cs.details.push_back(detailed ? scene.volumes[i].density_texture->detail->density : nullptr);
+    }
     int localShadowSlots = 0;
     for (const Light& l : scene.lights) {
         shd::LightData d = compileLight(l);
@@ -205,14 +223,19 @@ float plainVolumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {
     const glm::vec3 indexPos = shd::vdbIndexPos(v, p);
     // Occupancy culling (kind.w: the cells' offset, 0 = off): the GPU's vdbDensity skips the same walks.
     if (shd::vdbOccupancyOffset(v) != 0 && !cs.grids[i]->occupied(indexPos)) return 0.0f;
-    return v.params.x * cs.grids[i]->sampleIndex(indexPos);
+    return v.params.x * cs.grids[i]->sampleIndex(indexPos) * shd::localHeightFactor(v, p.y);
 }
 
 float densityTextureFactor(const CompiledScene& cs, size_t i, glm::vec3 p) {
     if (i >= cs.textures.size() || !cs.textures[i]) return 1.0f;
     const shd::VolumeData& v = cs.volumes[i];
     const shd::TextureCell c = shd::textureCell(v, p, cs.time);
-    return shd::textureDensityFactor(v, cs.textures[i]->sampleCorners(c.lo, c.hi, c.frac, v.textureParams.w));
+    float factor = shd::textureDensityFactor(v, cs.textures[i]->sampleCorners(c.lo, c.hi, c.frac, v.textureParams.w));
+    if (i < cs.details.size() && cs.details[i]) {
+        const shd::TextureCell dc = shd::detailCell(v, p, cs.time);
+        factor *= shd::detailDensityFactor(v, cs.details[i]->sampleCorners(dc.lo, dc.hi, dc.frac, v.detailParams.w));
+    }
+    return factor;
 }
 
 float volumeDensity(const CompiledScene& cs, size_t i, glm::vec3 p) {

@@ -19,6 +19,9 @@ struct CompiledScene {
     // Per volume: its density texture's grid (null when none). The GPU uploads them after `grids`;
     // VolumeData.textureMin.w is each one's byte offset there.
     std::vector<DensityGridPtr> textures;
+    // Per volume: its density texture's detail grid (null when none), uploaded after `textures`;
+    // VolumeData.detailMin.w is each one's byte offset.
+    std::vector<DensityGridPtr> details;
     std::vector<shd::LightData> lights;
     glm::vec3 ambient{0.0f};
     glm::vec3 cameraPosition{0.0f};

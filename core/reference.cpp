@@ -460,7 +460,8 @@ private:
             if (!shd::insideBounds(v, p)) continue;
             h = std::min(h, static_cast<double>(params_.density_step) * densityScale(v, ray, p));
             // A density texture's trilinear field changes over one of its voxels, like a grid's.
-            if (shd::hasDensityTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v));
+            if (shd::hasDensityTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v.textureParams, v.textureSize));
+            if (shd::hasDetailTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v.detailParams, v.detailSize));
         }
         return h;
     }
@@ -471,10 +472,10 @@ private:
         return r;
     }
 
-    // World edge of a density texture voxel: a tile holds textureSize voxels per axis.
-    static double textureVoxel(const shd::VolumeData& v) {
-        const glm::ivec3 n(v.textureSize);
-        return 1.0 / (static_cast<double>(v.textureParams.x) * static_cast<double>(std::max({n.x, n.y, n.z})));
+    // World edge of a density texture layer's voxel: a tile holds boxSize voxels per axis.
+    static double textureVoxel(glm::vec4 params, glm::ivec4 boxSize) {
+        const glm::ivec3 n(boxSize);
+        return 1.0 / (static_cast<double>(params.x) * static_cast<double>(std::max({n.x, n.y, n.z})));
     }
 
     // Ray length over which a volume's density changes by about a factor e (or its fade width).
@@ -491,7 +492,11 @@ private:
             return vis / 3.0 * std::exp(std::min(3.0 * x / vis, 700.0));
         }
         // Trilinear density changes over a voxel: a voxel edge is its scale (density_step of it per step).
-        if (v.kind.x == shd::VOLUME_VDB) return static_cast<double>(v.params.y);
+        // height_falloff: a factor e over 1 / (falloff |dir.y|).
+        if (v.kind.x == shd::VOLUME_VDB)
+            return v.params.z > 0.0f ? std::min(static_cast<double>(v.params.y),
+                                                1.0 / (static_cast<double>(v.params.z) * std::max(std::abs(ray.dir.y), 1e-30)))
+                                     : static_cast<double>(v.params.y);
         if (v.kind.x == shd::VOLUME_BOX) {
             // height_falloff: a factor e over 1 / (falloff |dir.y|).
             const double height = v.params.z > 0.0f ? 1.0 / (static_cast<double>(v.params.z) * std::max(std::abs(ray.dir.y), 1e-30))

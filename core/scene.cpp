@@ -28,6 +28,15 @@ Light makeLight(LightType type) {
     return l;
 }
 
+TextureLayer makeDetailLayer() {
+    TextureLayer d;
+    d.tile_size_m = settings::detail_tile_size.f();
+    d.scroll_mps = vec3Default(settings::detail_scroll);
+    d.strength = settings::detail_strength.f();
+    d.exponent = settings::detail_exponent.f();
+    return d;
+}
+
 const char* toString(Quality q) {
     switch (q) {
         case Quality::Low: return "low";

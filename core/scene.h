@@ -102,10 +102,10 @@ struct Medium {
     bool operator==(const Medium&) const = default;
 };
 
-// A noise grid tiled through world space and scrolled over time that modulates a volume's density
-// (any volume type; docs/vdb.md, "Density textures"). Sampled in world space, so adjacent volumes
-// with the same texture meet without a seam.
-struct DensityTexture {
+// One layer of a density texture: a noise grid tiled through world space and scrolled over time that
+// modulates a volume's density by 1 + strength (value / mean - 1) (docs/vdb.md, "Density textures").
+// Sampled in world space, so adjacent volumes with the same texture meet without a seam.
+struct TextureLayer {
     std::string file;  // as written in the scene
     std::string grid = "density";
     float tile_size_m = settings::texture_tile_size.f();
@@ -116,8 +116,18 @@ struct DensityTexture {
     // active box (DensityGrid::activeBoxMean) of value^exponent. Null until loaded: an unloaded texture modulates nothing.
     DensityGridPtr density;
     float mean = 0.0f;
+    bool operator==(const TextureLayer&) const = default;
+};
+
+// A volume's density texture (any volume type), with an optional detail layer: a second grid with
+// its own tile, scroll, strength and exponent whose factor is multiplied in (layered noise).
+struct DensityTexture : TextureLayer {
+    std::optional<TextureLayer> detail;
     bool operator==(const DensityTexture&) const = default;
 };
+
+// A detail layer with the detail settings' defaults (core/settings.h texture_detail_*).
+TextureLayer makeDetailLayer();
 
 enum class VolumeType { Box, Height, Depth, Vdb, Mesh, Ellipsoid, Cylinder };
 
@@ -133,7 +143,7 @@ struct Volume {
     std::string name;
     Transform transform;                                       // box, ellipsoid, cylinder, vdb, mesh
     float edge_fade = settings::volume_edge_fade.f();          // box, ellipsoid, cylinder
-    float height_falloff = settings::volume_height_falloff.f();  // box, ellipsoid, cylinder
+    float height_falloff = settings::volume_height_falloff.f();  // box, ellipsoid, cylinder, vdb, mesh
     float base_height = settings::volume_base_height.f();      // height
     HeightProfile profile = HeightProfile::Exponential;        // height
     float falloff = settings::volume_falloff.f();              // height, exponential

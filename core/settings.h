@@ -74,7 +74,7 @@ inline constexpr Setting light_outer_deg  {"lights[type=spot].outer_deg", K::Num
 inline constexpr Setting volume_type      {"volumes[].type", K::Choice, "", 0, 0, {0}, "box|height|depth|vdb|mesh|ellipsoid|cylinder", "Kind of fog volume; required."};
 inline constexpr Setting volume_name      {"volumes[].name", K::String, "", 0, 0, {0}, "", "Name shown in the editor."};
 inline constexpr Setting volume_edge_fade {"volumes[type=box|ellipsoid|cylinder].edge_fade", K::Number, "", 0, 1, {0.1}, "", "Fraction of the half-size over which density fades to 0 at the faces (ellipsoid, cylinder: the surface); 0 = hard edge."};
-inline constexpr Setting volume_height_falloff {"volumes[type=box|ellipsoid|cylinder].height_falloff", K::Number, "1/m", 0, 1000, {0}, "", "Density x exp(-height_falloff * (y - bottom)), bottom = the volume's lowest world point; 0 = uniform."};
+inline constexpr Setting volume_height_falloff {"volumes[type=box|ellipsoid|cylinder|vdb|mesh].height_falloff", K::Number, "1/m", 0, 1000, {0}, "", "Density x exp(-height_falloff * (y - bottom)), bottom = the volume's lowest world point (vdb, mesh: the bottom of the grid's bounds); 0 = uniform."};
 inline constexpr Setting volume_base_height {"volumes[type=height].base_height", K::Number, "m", -kBig, kBig, {0}, "", "Height below which density is 1."};
 inline constexpr Setting volume_profile   {"volumes[type=height].profile", K::Choice, "", 0, 0, {0}, "exponential|linear", "Density profile above base_height."};
 inline constexpr Setting volume_falloff   {"volumes[type=height].falloff", K::Number, "1/m", 0, 1000, {0.5}, "", "Exponential profile: density exp(-falloff * (y - base_height))."};
@@ -94,6 +94,12 @@ inline constexpr Setting texture_tile_size {"volumes[].density_texture.tile_size
 inline constexpr Setting texture_scroll   {"volumes[].density_texture.scroll_mps", K::Vec3, "m/s", -kBig, kBig, {0, 0, 0}, "", "Wind: the texture moves by scroll_mps x time (brume render --time, --fps)."};
 inline constexpr Setting texture_strength {"volumes[].density_texture.strength", K::Number, "", 0, 100, {1}, "", "density x max(0, 1 + strength (texture / mean - 1)), mean = the grid's mean over its active box: 0 = the plain volume, 1 = density x texture / mean (same mean density), > 1 = more contrast."};
 inline constexpr Setting texture_exponent {"volumes[].density_texture.exponent", K::Number, "", 0, 100, {1}, "", "Contrast: each voxel's value is raised to this power before the strength rule (and the mean is that of value^exponent, so strength 0 is still the plain volume); 1 = the grid as it is, > 1 sharper wisps."};
+inline constexpr Setting detail_file      {"volumes[].density_texture.detail.file", K::String, "", 0, 0, {0}, "", "Detail layer (optional object in density_texture): OpenVDB file of a second noise grid whose factor multiplies the texture's, relative to the scene file's folder. Required in detail."};
+inline constexpr Setting detail_grid      {"volumes[].density_texture.detail.grid", K::String, "", 0, 0, {0}, "", "Grid name in the detail file (default: density)."};
+inline constexpr Setting detail_tile_size {"volumes[].density_texture.detail.tile_size_m", K::Number, "m", 1e-3, kBig, {2.5}, "", "Edge of the world cube one copy of the detail grid fills (usually smaller than the texture's tile: finer noise)."};
+inline constexpr Setting detail_scroll    {"volumes[].density_texture.detail.scroll_mps", K::Vec3, "m/s", -kBig, kBig, {0, 0, 0}, "", "Wind of the detail layer: it moves by scroll_mps x time, independently of the texture."};
+inline constexpr Setting detail_strength  {"volumes[].density_texture.detail.strength", K::Number, "", 0, 100, {1}, "", "The detail's factor max(0, 1 + strength (detail / mean - 1)) multiplies the texture's; 0 = no detail (the texture alone), 1 = same mean density."};
+inline constexpr Setting detail_exponent  {"volumes[].density_texture.detail.exponent", K::Number, "", 0, 100, {1}, "", "Contrast of the detail layer: each voxel's value^exponent before its strength rule (its mean is that of value^exponent)."};
 inline constexpr Setting transform_translation {"*.transform.translation", K::Vec3, "m", -kBig, kBig, {0, 0, 0}, "", "Translation."};
 inline constexpr Setting transform_rotation {"*.transform.rotation_deg", K::Vec3, "deg", -36000, 36000, {0, 0, 0}, "", "Rotation about world X, then Y, then Z."};
 inline constexpr Setting transform_scale  {"*.transform.scale", K::Vec3, "", 1e-4, kBig, {1, 1, 1}, "", "Scale along the local axes (box volumes and geometry: the unit cube's edge lengths; ellipsoid: its diameters; cylinder: diameters along X and Z, height along Y)."};
@@ -139,7 +145,8 @@ inline constexpr std::array kAll = {
     &volume_type, &volume_name, &volume_edge_fade, &volume_height_falloff, &volume_base_height, &volume_profile, &volume_falloff,
     &volume_transition_height, &volume_visibility_distance, &volume_start_distance, &volume_file,
     &volume_grid, &volume_encoding, &volume_density_scale, &volume_mesh_file, &volume_edge_fade_m, &texture_file, &texture_grid, &texture_tile_size, &texture_scroll,
-    &texture_strength, &texture_exponent, &transform_translation, &transform_rotation, &transform_scale,
+    &texture_strength, &texture_exponent, &detail_file, &detail_grid, &detail_tile_size, &detail_scroll,
+    &detail_strength, &detail_exponent, &transform_translation, &transform_rotation, &transform_scale,
     &medium_scattering, &medium_absorption, &medium_emission, &medium_phase_g,
     &keys_interpolation, &keys_time, &keys_value,
     &influencer_type, &influencer_name, &influencer_radius, &influencer_length, &influencer_strength,

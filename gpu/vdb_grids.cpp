@@ -1,6 +1,7 @@
 // The vdb grid buffer (frame_table.h vdbGrids): every vdb volume's NanoVDB grid uploaded as is, back to
 // back at the offsets compileScene wrote into VolumeData.kind.y, each followed by its occupancy cells
-// (kind.w), then every density texture's grid (VolumeData.textureMin.w). No dense copy: GPU memory is
+// (kind.w), then every density texture's grid (VolumeData.textureMin.w), then every detail layer's
+// (detailMin.w). No dense copy: GPU memory is
 // the sum of the NanoVDB sizes plus the cells (0.3% on the smoke; no geometric growth as for the other
 // buffers).
 #include <algorithm>
@@ -22,7 +23,7 @@ std::string mib(VkDeviceSize bytes) {
 Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& dirty) {
     std::vector<DensityGridPtr> grids;
     VkDeviceSize total = 0;
-    for (const auto* list : {&cs.grids, &cs.textures})
+    for (const auto* list : {&cs.grids, &cs.textures, &cs.details})
         for (const DensityGridPtr& g : *list) {
             if (!g) continue;
             grids.push_back(g);

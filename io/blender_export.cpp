@@ -101,6 +101,8 @@ Result<std::map<size_t, std::string>> bakeTexturedVolumes(const Scene& scene, co
         one.volumes = {v};
         BakeOptions options;
         options.voxelSize = v.density_texture->tile_size_m / 64.0f;
+        if (v.density_texture->detail)  // the finer of the two layers sets the voxel
+            options.voxelSize = std::min(options.voxelSize, v.density_texture->detail->tile_size_m / 64.0f);
         Result<WorldBox> box = bakeBox(one, options, sceneName);
         if (!box) return box.error();
         const glm::vec3 size = box.value().max - box.value().min;
@@ -180,6 +182,9 @@ BlenderExport exportBlender(const FogSource& source, const std::map<size_t, std:
                 if (v.grid.find('#') != std::string::npos)
                     out.losses.push_back(label("volumes", i, v.name) + ": grid \"" + v.grid +
                                          "\" picks one of several same-named grids; Blender reads the first.");
+                if (v.height_falloff > 0.0f && baked.find(i) == baked.end())
+                    out.losses.push_back(label("volumes", i, v.name) + ": height_falloff " + std::to_string(v.height_falloff) +
+                                         " 1/m is not exported (the grid renders without it).");
                 break;
             case VolumeType::Mesh:
                 out.losses.push_back(label("volumes", i, v.name) + ": the mesh fog hull " + v.file +

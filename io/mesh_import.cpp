@@ -5,7 +5,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <sstream>
 #include <unordered_map>
@@ -119,6 +121,215 @@ struct ObjReader {
     }
 };
 
+// PLY (ASCII or binary little-endian): a header of elements and their properties, then each element's
+// rows. The vertex element's x, y, z and the face element's vertex_indices (or vertex_index) list are
+// read; every other element and property is skipped by its size.
+struct PlyReader {
+    enum class Format { Ascii, BinaryLe };
+    struct Property {
+        std::string name;
+        std::string type;       // scalar type, or the list's item type
+        std::string countType;  // list length type; empty for a scalar
+    };
+    struct Element {
+        std::string name;
+        uint64_t count = 0;
+        std::vector<Property> properties;
+    };
+
+    std::string path;
+    std::vector<glm::vec3> raw;
+    std::vector<int64_t> faceIndices;
+    std::vector<size_t> faceNumbers;  // the face (0-based) each triangle came from
+    Format format = Format::Ascii;
+    std::vector<Element> elements;
+    std::ifstream in;
+
+    Error bad(const std::string& what) const { return Error{path + ": " + what}; }
+
+    static int typeSize(const std::string& t) {
+        if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+        if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+        if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+        if (t == "double" || t == "float64") return 8;
+        return 0;
+    }
+
+    Result<void> header() {
+        std::string line;
+        if (!std::getline(in, line) || tokens(line) != std::vector<std::string_view>{"ply"})
+            return bad("not a PLY file (the first line is not 'ply').");
+        bool sawFormat = false;
+        while (std::getline(in, line)) {
+            const std::vector<std::string_view> t = tokens(line);
+            if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
+            if (t[0] == "end_header") {
+                if (!sawFormat) return bad("the PLY header has no 'format' line.");
+                return {};
+            }
+            if (t[0] == "format") {
+                if (t.size() < 2) return bad("the PLY header's 'format' line names no format.");
+                if (t[1] == "ascii") format = Format::Ascii;
+                else if (t[1] == "binary_little_endian") format = Format::BinaryLe;
+                else return bad("PLY format '" + std::string(t[1]) + "' is not supported (ascii or binary_little_endian).");
+                sawFormat = true;
+            } else if (t[0] == "element") {
+                uint64_t n = 0;
+                if (t.size() != 3 || std::from_chars(t[2].data(), t[2].data() + t[2].size(), n).ec != std::errc())
+                    return bad("a PLY 'element' line needs a name and a count.");
+                elements.push_back(Element{std::string(t[1]), n, {}});
+            } else if (t[0] == "property") {
+                if (elements.empty()) return bad("a PLY 'property' line comes before any 'element'.");
+                Property p;
+                if (t.size() == 5 && t[1] == "list") p = Property{std::string(t[4]), std::string(t[3]), std::string(t[2])};
+                else if (t.size() == 3) p = Property{std::string(t[2]), std::string(t[1]), ""};
+                else return bad("a PLY 'property' line is malformed.");
+                if (typeSize(p.type) == 0 || (!p.countType.empty() && typeSize(p.countType) == 0))
+                    return bad("PLY property '" + p.name + "' has an unknown type.");
+                elements.back().properties.push_back(p);
+            }
+        }
+        return bad("the PLY header has no 'end_header' line.");
+    }
+
+    // One value of type t, as a double (binary: little-endian bytes; ASCII: the next token).
+    bool value(const std::string& t, std::vector<std::string_view>& row, size_t& at, double& out) {
+        if (format == Format::Ascii) {
+            if (at >= row.size()) return false;
+            const std::string_view s = row[at++];
+            const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+            return r.ec == std::errc() && r.ptr == s.data() + s.size();
+        }
+        unsigned char b[8];
+        const int n = typeSize(t);
+        if (!in.read(reinterpret_cast<char*>(b), n)) return false;
+        uint64_t u = 0;
+        for (int i = n - 1; i >= 0; --i) u = (u << 8) | b[i];
+        if (t == "float" || t == "float32") {
+            float f;
+            const uint32_t u32 = static_cast<uint32_t>(u);
+            std::memcpy(&f, &u32, 4);
+            out = f;
+        } else if (t == "double" || t == "float64") {
+            std::memcpy(&out, &u, 8);
+        } else if (t[0] == 'u') {
+            out = static_cast<double>(u);
+        } else {  // signed: extend from n bytes
+            const int shift = 64 - 8 * n;
+            out = static_cast<double>(static_cast<int64_t>(u << shift) >> shift);
+        }
+        return true;
+    }
+
+    Result<void> read() {
+        in.open(path, std::ios::binary);
+        if (!in) return Error{path + ": cannot read the file (" + std::strerror(errno) + ")."};
+        if (Result<void> h = header(); !h) return h;
+        // The caps, from the header's counts, before any data is read.
+        for (const Element& e : elements) {
+            if (e.name == "vertex" && e.count > kMeshMaxVertices)
+                return bad("more than " + count(kMeshMaxVertices) + " vertices, over Brume's limit for a mesh volume.");
+            if (e.name == "face" && e.count > kMeshMaxTriangles)
+                return bad("more than " + count(kMeshMaxTriangles) +
+                           " triangles, over Brume's limit for a mesh volume (simplify the mesh).");
+        }
+        std::string line;
+        std::vector<std::string_view> row;
+        for (const Element& e : elements) {
+            const bool vertices = e.name == "vertex", faces = e.name == "face";
+            if (e.properties.empty() && !vertices) continue;  // rows of nothing: no data to skip
+            int axis[3] = {-1, -1, -1};
+            int list = -1;
+            for (size_t i = 0; i < e.properties.size(); ++i) {
+                const Property& p = e.properties[i];
+                if (vertices && p.countType.empty() && p.name.size() == 1 && p.name[0] >= 'x' && p.name[0] <= 'z')
+                    axis[p.name[0] - 'x'] = static_cast<int>(i);
+                if (faces && !p.countType.empty() && (p.name == "vertex_indices" || p.name == "vertex_index"))
+                    list = static_cast<int>(i);
+            }
+            if (vertices && (axis[0] < 0 || axis[1] < 0 || axis[2] < 0))
+                return bad("the PLY vertex element lacks an x, y or z property.");
+            if (faces && list < 0) return bad("the PLY face element has no vertex_indices list.");
+            // ASCII rows are lines (the PLY header is small, the rows are not: a row's tokens, then
+            // its values).
+            for (uint64_t r = 0; r < e.count; ++r) {
+                size_t at = 0;
+                if (format == Format::Ascii) {
+                    do {
+                        if (!std::getline(in, line)) return bad("the PLY data is cut short before " + e.name + " " + count(r) + ".");
+                        row = tokens(line);
+                    } while (row.empty());
+                }
+                glm::vec3 p(0.0f);
+                for (size_t i = 0; i < e.properties.size(); ++i) {
+                    const Property& prop = e.properties[i];
+                    double v = 0.0;
+                    const std::string& scalar = prop.countType.empty() ? prop.type : prop.countType;
+                    if (!value(scalar, row, at, v))
+                        return bad("the PLY data of " + e.name + " " + count(r) + " is cut short or not a number.");
+                    if (prop.countType.empty()) {
+                        for (int a = 0; a < 3; ++a)
+                            if (axis[a] == static_cast<int>(i)) p[a] = static_cast<float>(v);
+                        continue;
+                    }
+                    if (!(v >= 0.0) || v > 1.0e6)
+                        return bad("the PLY " + e.name + " " + count(r) + " has a list length of " + std::to_string(v) + ".");
+                    const size_t n = static_cast<size_t>(v);
+                    std::vector<int64_t> corners(n);
+                    for (size_t c = 0; c < n; ++c) {
+                        double idx = 0.0;
+                        if (!value(prop.type, row, at, idx))
+                            return bad("the PLY data of " + e.name + " " + count(r) + " is cut short or not a number.");
+                        corners[c] = static_cast<int64_t>(idx);
+                    }
+                    if (static_cast<int>(i) != list) continue;
+                    if (n < 3) return bad("PLY face " + count(r) + " has fewer than three vertices.");
+                    if (faceIndices.size() / 3 + (n - 2) > kMeshMaxTriangles)
+                        return bad("more than " + count(kMeshMaxTriangles) +
+                                   " triangles, over Brume's limit for a mesh volume (simplify the mesh).");
+                    for (size_t c = 1; c + 1 < n; ++c) {  // a fan, as for OBJ polygons
+                        faceIndices.insert(faceIndices.end(), {corners[0], corners[c], corners[c + 1]});
+                        faceNumbers.push_back(static_cast<size_t>(r));
+                    }
+                }
+                if (vertices) {
+                    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                        return bad("vertex " + count(raw.size()) + " has a non-finite coordinate (NaN or infinite).");
+                    raw.push_back(p);
+                }
+            }
+        }
+        if (in.bad()) return Error{path + ": cannot read the file (a read error)."};
+        return {};
+    }
+};
+
+// Welds equal positions and drops degenerate triangles; faceIndices index raw (checked here), where(i)
+// names triangle i's source in a range error.
+Result<TriangleMesh> weldMesh(const std::string& path, const std::vector<glm::vec3>& raw, const std::vector<int64_t>& faceIndices,
+                              const std::function<std::string(size_t)>& where) {
+    for (size_t i = 0; i < faceIndices.size(); ++i)
+        if (faceIndices[i] < 0 || faceIndices[i] >= static_cast<int64_t>(raw.size()))
+            return Error{path + ": " + where(i / 3) + " uses vertex " + std::to_string(faceIndices[i] + 1) + " but the file has " +
+                         count(raw.size()) + " vertices."};
+    TriangleMesh mesh;
+    std::unordered_map<PointKey, uint32_t, PointKeyHash> welded;
+    std::vector<uint32_t> remap(raw.size());
+    for (size_t i = 0; i < raw.size(); ++i) {
+        const auto [it, added] = welded.try_emplace(keyOf(raw[i]), static_cast<uint32_t>(mesh.points.size()));
+        if (added) mesh.points.push_back(raw[i]);
+        remap[i] = it->second;
+    }
+    for (size_t i = 0; i < faceIndices.size(); i += 3) {
+        const glm::uvec3 t(remap[static_cast<size_t>(faceIndices[i])], remap[static_cast<size_t>(faceIndices[i + 1])],
+                           remap[static_cast<size_t>(faceIndices[i + 2])]);
+        if (t.x != t.y && t.y != t.z && t.x != t.z) mesh.triangles.push_back(t);
+    }
+    if (mesh.triangles.empty())
+        return Error{path + ": the mesh has no triangles with three distinct vertices (every face is degenerate)."};
+    return mesh;
+}
+
 }  // namespace
 
 Result<TriangleMesh> readObjMesh(const std::string& path) {
@@ -127,26 +338,23 @@ Result<TriangleMesh> readObjMesh(const std::string& path) {
     if (r.faceIndices.empty())
         return Error{path + ": the mesh has no triangles (no 'f' lines; a mesh volume needs a closed triangle mesh in "
                             "OBJ format)."};
-    for (size_t i = 0; i < r.faceIndices.size(); ++i)
-        if (r.faceIndices[i] < 0 || r.faceIndices[i] >= static_cast<int64_t>(r.raw.size()))
-            return Error{path + ": line " + count(r.faceLines[i / 3]) + ": a face uses vertex " +
-                         std::to_string(r.faceIndices[i] + 1) + " but the file has " + count(r.raw.size()) + " vertices."};
-    TriangleMesh mesh;
-    std::unordered_map<PointKey, uint32_t, PointKeyHash> welded;
-    std::vector<uint32_t> remap(r.raw.size());
-    for (size_t i = 0; i < r.raw.size(); ++i) {
-        const auto [it, added] = welded.try_emplace(keyOf(r.raw[i]), static_cast<uint32_t>(mesh.points.size()));
-        if (added) mesh.points.push_back(r.raw[i]);
-        remap[i] = it->second;
-    }
-    for (size_t i = 0; i < r.faceIndices.size(); i += 3) {
-        const glm::uvec3 t(remap[static_cast<size_t>(r.faceIndices[i])], remap[static_cast<size_t>(r.faceIndices[i + 1])],
-                           remap[static_cast<size_t>(r.faceIndices[i + 2])]);
-        if (t.x != t.y && t.y != t.z && t.x != t.z) mesh.triangles.push_back(t);
-    }
-    if (mesh.triangles.empty())
-        return Error{path + ": the mesh has no triangles with three distinct vertices (every face is degenerate)."};
-    return mesh;
+    return weldMesh(path, r.raw, r.faceIndices, [&](size_t t) { return "line " + count(r.faceLines[t]) + ": a face"; });
+}
+
+Result<TriangleMesh> readPlyMesh(const std::string& path) {
+    PlyReader r;
+    r.path = path;
+    if (Result<void> ok = r.read(); !ok) return ok.error();
+    if (r.faceIndices.empty())
+        return Error{path + ": the mesh has no triangles (no faces; a mesh volume needs a closed triangle mesh)."};
+    // A range error counts vertices from 1, as for OBJ (PLY's own indices start at 0).
+    return weldMesh(path, r.raw, r.faceIndices, [&](size_t t) { return "face " + count(r.faceNumbers[t]); });
+}
+
+Result<TriangleMesh> readMesh(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".ply" ? readPlyMesh(path) : readObjMesh(path);
 }
 
 size_t openEdgeCount(const TriangleMesh& mesh) {
@@ -179,7 +387,7 @@ float meshFogDensity(float distance, float edgeFadeM, float voxel) {
 }
 
 Result<VdbLoad> loadMeshDensityInProcess(const std::string& path, float edgeFadeM, const VdbImportOptions& options) {
-    Result<TriangleMesh> read = readObjMesh(path);
+    Result<TriangleMesh> read = readMesh(path);
     if (!read) return read.error();
     const TriangleMesh& mesh = read.value();
     if (const size_t open = openEdgeCount(mesh); open > 0)

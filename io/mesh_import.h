@@ -1,5 +1,5 @@
 // Mesh fog hulls (`mesh` volumes, docs/vdb.md "Mesh fog hulls"): a closed triangle mesh (Wavefront
-// OBJ) turned into a fog grid with OpenVDB's mesh-to-volume tools: a signed distance grid, then
+// OBJ or PLY) turned into a fog grid with OpenVDB's mesh-to-volume tools: a signed distance grid, then
 // density smoothstep(0, edge_fade_m, -distance) inside the surface (1 deeper in), 0 outside, kept
 // sparse as a float NanoVDB grid and sampled like a vdb volume by every renderer (core/compile.cpp).
 //
@@ -42,6 +42,14 @@ struct TriangleMesh {
 // Reads an OBJ file's `v` and `f` lines (polygons fan-triangulated; `a`, `a/b`, `a//c`, `a/b/c` and
 // negative indices; every other line ignored), welds equal positions and drops degenerate triangles.
 Result<TriangleMesh> readObjMesh(const std::string& path);
+
+// Reads a PLY file (ASCII or binary little-endian; big-endian is refused): the vertex element's x, y,
+// z and the face element's vertex_indices (or vertex_index) list, polygons fan-triangulated; other
+// elements and properties skipped. The same checks, welding and sentences as readObjMesh.
+Result<TriangleMesh> readPlyMesh(const std::string& path);
+
+// readPlyMesh for a .ply file (any case), readObjMesh otherwise.
+Result<TriangleMesh> readMesh(const std::string& path);
 
 // Edges that border an odd number of triangles (0 for a closed mesh).
 size_t openEdgeCount(const TriangleMesh& mesh);

@@ -101,6 +101,7 @@ void forEachFile(std::vector<Volume>& volumes, const std::function<void(std::str
     for (Volume& v : volumes) {
         if (v.type == VolumeType::Vdb || v.type == VolumeType::Mesh) f(v.file);
         if (v.density_texture) f(v.density_texture->file);
+        if (v.density_texture && v.density_texture->detail) f(v.density_texture->detail->file);
     }
 }
 
@@ -124,6 +125,7 @@ Preset presetFromScene(const Scene& scene, const std::string& name, bool withLig
         v.density = nullptr;
         v.hidden = false;
         if (v.density_texture) v.density_texture->density = nullptr;
+        if (v.density_texture && v.density_texture->detail) v.density_texture->detail->density = nullptr;
     }
     resolveFiles(p.volumes, scene.baseDir);
     return p;
@@ -183,6 +185,10 @@ Result<void> checkVolumeFiles(const std::vector<Volume>& volumes, const std::str
         if (v.density_texture && !fs::is_regular_file(absoluteFrom(baseDir, v.density_texture->file), ec))
             return Error{at + ".density_texture.file: the VDB file " +
                          absoluteFrom(baseDir, v.density_texture->file).string() + " does not exist"};
+        if (v.density_texture && v.density_texture->detail &&
+            !fs::is_regular_file(absoluteFrom(baseDir, v.density_texture->detail->file), ec))
+            return Error{at + ".density_texture.detail.file: the VDB file " +
+                         absoluteFrom(baseDir, v.density_texture->detail->file).string() + " does not exist"};
     }
     return {};
 }

@@ -563,6 +563,16 @@ void readDensityTexture(Ctx& c, Obj& parent, Volume& vol) {
         readVec3(c, o, st::texture_scroll, tex.scroll_mps);
         readFloat(c, o, st::texture_strength, tex.strength);
         readFloat(c, o, st::texture_exponent, tex.exponent);
+        readChild(c, o, "detail", "density_texture.detail", [&](Obj& d) {
+            TextureLayer layer = makeDetailLayer();
+            readString(c, d, st::detail_file, layer.file, Text::NonEmpty, "the OpenVDB file of the detail layer");
+            readString(c, d, st::detail_grid, layer.grid, Text::NonEmpty);
+            readFloat(c, d, st::detail_tile_size, layer.tile_size_m);
+            readVec3(c, d, st::detail_scroll, layer.scroll_mps);
+            readFloat(c, d, st::detail_strength, layer.strength);
+            readFloat(c, d, st::detail_exponent, layer.exponent);
+            if (!c.failed()) tex.detail = layer;
+        });
         if (!c.failed()) vol.density_texture = tex;
     });
 }
@@ -606,11 +616,13 @@ std::optional<Volume> readVolume(Ctx& c, const json& v, const std::string& path)
             readEnum<VdbEncoding, 3>(c, o, st::volume_encoding, vol.encoding);
             readTransform(c, o, vol.transform);
             readFloat(c, o, st::volume_density_scale, vol.density_scale);
+            readFloat(c, o, st::volume_height_falloff, vol.height_falloff);
             break;
         case VolumeType::Mesh:
-            readString(c, o, st::volume_mesh_file, vol.file, Text::NonEmpty, "the mesh file (OBJ) of a mesh volume");
+            readString(c, o, st::volume_mesh_file, vol.file, Text::NonEmpty, "the mesh file (OBJ or PLY) of a mesh volume");
             readFloat(c, o, st::volume_edge_fade_m, vol.edge_fade_m);
             readTransform(c, o, vol.transform);
+            readFloat(c, o, st::volume_height_falloff, vol.height_falloff);
             break;
     }
     readDensityTexture(c, o, vol);
@@ -969,11 +981,13 @@ ojson volumeJson(const Volume& v) {
             j["encoding"] = toString(v.encoding);
             j["transform"] = transformJson(v.transform);
             j["density_scale"] = num(v.density_scale);
+            if (v.height_falloff != 0.0f) j["height_falloff"] = num(v.height_falloff);
             break;
         case VolumeType::Mesh:
             j["file"] = v.file;
             j["edge_fade_m"] = num(v.edge_fade_m);
             j["transform"] = transformJson(v.transform);
+            if (v.height_falloff != 0.0f) j["height_falloff"] = num(v.height_falloff);
             break;
     }
     if (v.density_texture) {
@@ -985,6 +999,16 @@ ojson volumeJson(const Volume& v) {
         tj["scroll_mps"] = vec(t.scroll_mps);
         tj["strength"] = num(t.strength);
         if (t.exponent != 1.0f) tj["exponent"] = num(t.exponent);
+        if (t.detail) {
+            ojson dj;
+            dj["file"] = t.detail->file;
+            dj["grid"] = t.detail->grid;
+            dj["tile_size_m"] = num(t.detail->tile_size_m);
+            dj["scroll_mps"] = vec(t.detail->scroll_mps);
+            dj["strength"] = num(t.detail->strength);
+            dj["exponent"] = num(t.detail->exponent);
+            tj["detail"] = dj;
+        }
         j["density_texture"] = tj;
     }
     j["medium"] = mediumJson(v.medium);

@@ -347,10 +347,10 @@ Result<std::vector<VdbGridInfo>> inspectVdbInProcess(const std::string& path, co
     return out;
 }
 
-// The texture of volume i: its grid and the mean its strength is measured against.
-Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std::string& sceneFile, size_t i,
-                                uint64_t memoryLimitBytes, std::vector<std::string>& warnings) {
-    const std::string where = sceneFile + ": volumes[" + std::to_string(i) + "].density_texture.";
+// One layer of volume i's texture: its grid and the mean its strength is measured against. where:
+// "SCENE: volumes[i].density_texture." or "...density_texture.detail.".
+static Result<void> loadTextureLayer(TextureLayer& t, const Scene& scene, const std::string& where,
+                                     uint64_t memoryLimitBytes, std::vector<std::string>& warnings) {
     fs::path p(t.file);
     if (p.is_relative()) p = fs::path(scene.baseDir) / p;
     VdbImportOptions options;
@@ -366,6 +366,15 @@ Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std
                      "mean)."};
     t.density = load.value().grid;
     t.mean = static_cast<float>(mean);
+    return {};
+}
+
+// The texture of volume i and its detail layer.
+Result<void> loadDensityTexture(DensityTexture& t, const Scene& scene, const std::string& sceneFile, size_t i,
+                                uint64_t memoryLimitBytes, std::vector<std::string>& warnings) {
+    const std::string where = sceneFile + ": volumes[" + std::to_string(i) + "].density_texture.";
+    if (Result<void> r = loadTextureLayer(t, scene, where, memoryLimitBytes, warnings); !r) return r;
+    if (t.detail) return loadTextureLayer(*t.detail, scene, where + "detail.", memoryLimitBytes, warnings);
     return {};
 }
 

@@ -39,7 +39,8 @@ bool vdbOccupied(VolumeData v, ivec3 base) {
     return w >= 0 && vdbGridWords[h + uint(VDB_OCCUPANCY_HEADER_WORDS + w)] != 0u;
 }
 
-// Density of vdb volume v at a world position, without bounds test (core: volumeDensity). Cells the
+// Density of vdb volume v at a world position, without bounds test (core: plainVolumeDensity), with
+// its height_falloff (shared/media.h localHeightFactor: 1 without). Cells the
 // occupancy grid marks empty return 0 without walking the tree.
 float vdbDensity(VolumeData v, vec3 worldPos) {
     if (!vdbHasGrid(v)) return 0.0f;
@@ -55,5 +56,5 @@ float vdbDensity(VolumeData v, vec3 worldPos) {
                    vdbVoxel(buf, acc, b + ivec3(1, 1, 0)));
     vec4 hi = vec4(vdbVoxel(buf, acc, b + ivec3(0, 0, 1)), vdbVoxel(buf, acc, b + ivec3(1, 0, 1)),
                    vdbVoxel(buf, acc, b + ivec3(0, 1, 1)), vdbVoxel(buf, acc, b + ivec3(1, 1, 1)));
-    return v.params.x * vdbTrilinear(lo, hi, c.frac);
+    return v.params.x * vdbTrilinear(lo, hi, c.frac) * localHeightFactor(v, worldPos.y);
 }

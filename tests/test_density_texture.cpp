@@ -285,11 +285,121 @@ TEST_F(DensityTextureTest, FogShadowsStayFiniteAndNearThePlainVolume) {
     }
 }
 
+// The detail layer (layered noise): the same known field as a second grid, tiled 4x finer, scrolled
+// and sharpened, its factor multiplied into the texture's. Its own mean rule: strength 0 is the
+// texture alone.
+TextureLayer detailLayer(const DensityGridPtr& grid, float strength, float exponent, glm::vec3 scroll) {
+    TextureLayer d = makeDetailLayer();
+    d.file = "noise.vdb";
+    d.grid = "noise";
+    d.tile_size_m = kTile / 4.0f;
+    d.scroll_mps = scroll;
+    d.strength = strength;
+    d.exponent = exponent;
+    d.density = grid;
+    d.mean = grid ? static_cast<float>(grid->activeBoxMean(exponent)) : 0.0f;
+    return d;
+}
+
+// The box's density at texture voxel centres inside its full-density core is the closed form
+// field(i, j, k) x (1 + s (field(i', j', k')^e / mean(field^e) - 1)), with (i', j', k') the detail
+// voxel under the point after the detail's scroll (one detail voxel along x here).
+TEST_F(DensityTextureTest, DetailLayerMultipliesItsOwnFactorIntoTheDensity) {
+    ASSERT_TRUE(grid_);
+    const float s = 0.6f, e = 2.0f, t = 0.5f;
+    const float detailVoxel = kTile / 4.0f / kN;
+    DensityTexture tex = texture(grid_);
+    tex.detail = detailLayer(grid_, s, e, glm::vec3(detailVoxel / t, 0.0f, 0.0f));
+    Scene scene = texturedScene(tex);
+    scene.time_s = t;
+    const CompiledScene cs = compileScene(scene);
+    double mean = 0.0;
+    for (int i = 0; i < kN; ++i)
+        for (int j = 0; j < kN; ++j)
+            for (int k = 0; k < kN; ++k) mean += std::pow(field(i, j, k), e);
+    mean /= double(kN) * kN * kN;
+    const float voxel = kTile / kN;  // 4 detail voxels
+    auto wrap = [](int i) { return ((i % kN) + kN) % kN; };
+    int checked = 0;
+    for (int a : {1, 3, 6, 8})
+        for (int b : {1, 4, 7})
+            for (int c : {-8, -3, 2, 5}) {
+                const glm::vec3 p(a * voxel, b * voxel, c * voxel);
+                const double detail = 1.0 + s * (std::pow(field(wrap(4 * a - 1), wrap(4 * b), wrap(4 * c)), e) / mean - 1.0);
+                const double expected = field(wrap(a), wrap(b), wrap(c)) * std::max(detail, 0.0);
+                EXPECT_NEAR(volumeDensity(cs, 0, p), expected, 1e-3 * expected + 1e-5) << a << " " << b << " " << c;
+                ++checked;
+            }
+    EXPECT_EQ(checked, 48);
+    // Without the detail the density is the texture's alone: the detail changed it (the test can fail).
+    Scene plain = texturedScene(texture(grid_));
+    const glm::vec3 p(3 * voxel, 4 * voxel, 2 * voxel);
+    EXPECT_GT(std::abs(volumeDensity(compileScene(plain), 0, p) - volumeDensity(cs, 0, p)), 0.05);
+}
+
+// A detail of strength 0 renders the texture alone, to the bit, however it scrolls and whatever its
+// exponent; a detail the size of the scene's features changes the image.
+TEST_F(DensityTextureTest, DetailStrengthZeroIsTheTextureAloneExactly) {
+    ASSERT_TRUE(grid_);
+    DensityTexture tex = texture(grid_);
+    tex.detail = detailLayer(grid_, 0.0f, 3.0f, {0.4f, -0.2f, 0.1f});
+    Scene s = texturedScene(tex);
+    s.time_s = 7.25f;
+    Scene alone = texturedScene(texture(grid_));
+    alone.time_s = 7.25f;
+    const Image zero = renderFroxelCpu(s, smallRequest()).image;
+    const Image textureAlone = renderFroxelCpu(alone, smallRequest()).image;
+    EXPECT_EQ(maxAbsDiff(zero, textureAlone), 0.0);
+    s.volumes[0].density_texture->detail->strength = 1.0f;
+    s.volumes[0].density_texture->detail->tile_size_m = kTile;
+    EXPECT_GT(relativeMeanAbsError(renderFroxelCpu(s, smallRequest()).image, textureAlone), 0.02);
+}
+
+// The CPU froxel renderer against the reference with both layers, as for the texture alone
+// (FroxelCpuMatchesTheReference): the detail's effect (both layers minus the texture alone) is
+// sampled within 1% and the image within 1%.
+TEST_F(DensityTextureTest, DetailLayerFroxelCpuMatchesTheReference) {
+    ASSERT_TRUE(grid_);
+    auto thin = [&](bool detail) {
+        DensityTexture tex = texture(grid_);
+        if (detail) tex.detail = detailLayer(grid_, 0.8f, 1.5f, glm::vec3(0.0f));
+        if (detail) tex.detail->tile_size_m = kTile / 2.0f;
+        Scene s = texturedScene(tex);
+        s.lights.clear();
+        s.ambient = glm::vec3(0.0f);
+        s.volumes[0].medium.emission = {0.5f, 0.3f, 0.2f};
+        s.volumes[0].medium.scattering = glm::vec3(0.15f);
+        s.volumes[0].medium.absorption = glm::vec3(0.05f);
+        s.froxels.tile_px = 1;
+        s.froxels.slices = 256;
+        return s;
+    };
+    const Image ref = renderReference(thin(true), smallRequest());
+    const Image froxel = renderFroxelCpu(thin(true), smallRequest()).image;
+    const Image refAlone = renderReference(thin(false), smallRequest());
+    const Image froxelAlone = renderFroxelCpu(thin(false), smallRequest()).image;
+    double deltaErr = 0.0, deltaRef = 0.0;
+    for (size_t p = 0; p < ref.pixels.size(); ++p) {
+        const glm::vec3 dRef = ref.pixels[p] - refAlone.pixels[p];
+        deltaErr += static_cast<double>(glm::length(froxel.pixels[p] - froxelAlone.pixels[p] - dRef));
+        deltaRef += static_cast<double>(glm::length(dRef));
+    }
+    const double err = relativeMeanAbsError(froxel, ref);
+    const double detailShare = relativeMeanAbsError(refAlone, ref);
+    std::printf("froxel vs reference with a detail layer: %.3g; the detail's effect %.3g, its error %.3g\n", err,
+                detailShare, deltaErr / deltaRef);
+    EXPECT_TRUE(allFinite(ref) && allFinite(froxel));
+    EXPECT_LT(deltaErr / deltaRef, 0.01);
+    EXPECT_LT(err, 0.01);
+    EXPECT_GT(detailShare, 0.05);
+}
+
 // The scene format: density_texture on every volume type round-trips; relative files resolve against
 // the scene file's folder; loading fills the grid and its mean.
 TEST_F(DensityTextureTest, SceneFilesReadWriteAndLoadTextures) {
     const std::string json = R"({"brume_scene": 1, "volumes": [
-        {"type": "box", "density_texture": {"file": "noise.vdb", "grid": "noise", "tile_size_m": 4, "scroll_mps": [1, 0, -0.5], "strength": 0.7}},
+        {"type": "box", "density_texture": {"file": "noise.vdb", "grid": "noise", "tile_size_m": 4, "scroll_mps": [1, 0, -0.5], "strength": 0.7,
+                                           "detail": {"file": "noise.vdb", "grid": "noise", "scroll_mps": [0, 0.5, 0], "exponent": 2}}},
         {"type": "height", "density_texture": {"file": "noise.vdb", "grid": "noise"}},
         {"type": "depth", "density_texture": {"file": "noise.vdb", "grid": "noise", "tile_size_m": 30}}]})";
     const fs::path file = dir_.path / "scene.json";
@@ -301,6 +411,12 @@ TEST_F(DensityTextureTest, SceneFilesReadWriteAndLoadTextures) {
     EXPECT_EQ(t.scroll_mps, glm::vec3(1.0f, 0.0f, -0.5f));
     EXPECT_EQ(t.strength, 0.7f);
     EXPECT_EQ(scene.value().volumes[1].density_texture->tile_size_m, settings::texture_tile_size.f());
+    ASSERT_TRUE(t.detail);
+    EXPECT_EQ(t.detail->tile_size_m, settings::detail_tile_size.f());
+    EXPECT_EQ(t.detail->scroll_mps, glm::vec3(0.0f, 0.5f, 0.0f));
+    EXPECT_EQ(t.detail->strength, settings::detail_strength.f());
+    EXPECT_EQ(t.detail->exponent, 2.0f);
+    EXPECT_FALSE(scene.value().volumes[1].density_texture->detail);
     Result<Scene> again = parseScene(sceneToJson(scene.value()), "again.json");
     ASSERT_TRUE(again.ok()) << again.error().message;
     EXPECT_EQ(again.value(), scene.value());
@@ -310,6 +426,8 @@ TEST_F(DensityTextureTest, SceneFilesReadWriteAndLoadTextures) {
         ASSERT_TRUE(v.density_texture->density);
         EXPECT_NEAR(v.density_texture->mean, 1.0f, 1e-5f);
     }
+    ASSERT_TRUE(scene.value().volumes[0].density_texture->detail->density);
+    EXPECT_NEAR(scene.value().volumes[0].density_texture->detail->mean, grid_->activeBoxMean(2.0f), 1e-5);
 }
 
 // Bad input: exit code 2 and one line naming the scene file and the JSON path.
@@ -331,6 +449,14 @@ TEST_F(DensityTextureTest, BadInputIsOneSentenceAndExitCodeTwo) {
         {R"({"file": "noise.vdb", "octaves": 3})", "volumes[0].density_texture.octaves"},
         {R"({"grid": "noise"})", "volumes[0].density_texture.file"},
         {R"({"file": "zero.vdb", "grid": "noise"})", "volumes[0].density_texture.grid"},
+        {R"({"file": "noise.vdb", "grid": "noise", "detail": {"file": "noise.vdb", "grid": "noise", "exponent": -1}})",
+         "volumes[0].density_texture.detail.exponent"},
+        {R"({"file": "noise.vdb", "grid": "noise", "detail": {"file": "noise.vdb", "grid": "noise", "strength": -0.1}})",
+         "volumes[0].density_texture.detail.strength"},
+        {R"({"file": "noise.vdb", "grid": "noise", "detail": {"grid": "noise"}})", "volumes[0].density_texture.detail.file"},
+        {R"({"file": "noise.vdb", "grid": "noise", "detail": {"file": "missing.vdb"}})", "volumes[0].density_texture.detail.file"},
+        {R"({"file": "noise.vdb", "grid": "noise", "detail": {"file": "zero.vdb", "grid": "noise"}})",
+         "volumes[0].density_texture.detail.grid"},
     };
     for (const auto& c : cases) {
         std::ofstream(dir_.path / "scene.json") << box(c.tex);

@@ -278,6 +278,31 @@ TEST(EditorFiles, ImportMeshMakesAHullAndEditsRemakeItsGrid) {
     fs::remove_all(dir);
 }
 
+// Save As into another folder rebases a density texture's file and its detail layer's like a vdb
+// volume's: the saved scene still names the same files.
+TEST(EditorFiles, SaveAsIntoAnotherFolderKeepsTextureAndDetailFiles) {
+    const fs::path dir = tempDir("texture_saveas"), elsewhere = tempDir("texture_saveas_other");
+    fs::create_directories(dir / "vdb");
+    writeCube(dir / "vdb" / "cube.vdb");
+    Scene s = defaultAt(dir / "scene.json").scene();
+    ASSERT_FALSE(s.volumes.empty());
+    DensityTexture t;
+    t.file = "vdb/cube.vdb";
+    t.detail = makeDetailLayer();
+    t.detail->file = "vdb/cube.vdb";
+    s.volumes[0].density_texture = t;
+    Document doc(s, (dir / "scene.json").string());
+    Files files{RecentFiles()};
+    ASSERT_TRUE(run(files, doc, "save " + (elsewhere / "moved.json").string()).ok());
+    Result<Scene> moved = loadSceneFile((elsewhere / "moved.json").string());
+    ASSERT_TRUE(moved.ok()) << moved.error().message;
+    const std::string cube = (dir / "vdb" / "cube.vdb").string();
+    EXPECT_EQ(moved.value().volumes[0].density_texture->file, cube);
+    EXPECT_EQ(moved.value().volumes[0].density_texture->detail->file, cube);
+    fs::remove_all(dir);
+    fs::remove_all(elsewhere);
+}
+
 // Found by the crash-safety review (issue 17): Save As moved the document but not its autosave, so
 // edits after it went on being autosaved beside the old file, where a restart on the new file
 // never looks. The autosave follows the path; a stale recovery file at the new place is removed.

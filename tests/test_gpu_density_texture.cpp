@@ -160,3 +160,72 @@ TEST_F(GpuDensityTexture, StrengthZeroIsThePlainVolume) {
     std::printf("[gpu texture] strength 0 vs plain %.2e\n", err);
     EXPECT_LT(err, 1e-6);
 }
+
+// The detail layer (shared/density_texture.h detailCell, detailDensityFactor): a second, finer,
+// sharpened and scrolled copy of the noise multiplied in, on the box and on the vdb ball. Besides
+// the texture's share, the detail's own share of sigma_t (against the texture alone) must be far
+// above the tolerance.
+TEST_F(GpuDensityTexture, DetailLayerMatchesCpu) {
+    ASSERT_TRUE(noiseGrid && ballGrid);
+    Scene s = scene(true, 1.0f);
+    Scene alone = s;
+    for (Volume& v : s.volumes) {
+        TextureLayer d = makeDetailLayer();
+        d.tile_size_m = 1.3f;
+        d.strength = 0.8f;
+        d.exponent = 2.0f;
+        d.scroll_mps = {-0.4f, 0.2f, 0.6f};
+        d.density = noiseGrid;
+        d.mean = static_cast<float>(noiseGrid->activeBoxMean(d.exponent));
+        v.density_texture->detail = d;
+    }
+    expectMatchesCpu(s, "box + vdb, detail");
+    const double share = relativeMeanAbsError(asImage(renderFroxelCpu(alone, request()).volumes.mediaExtinction),
+                                              asImage(renderFroxelCpu(s, request()).volumes.mediaExtinction));
+    std::printf("[gpu texture] the detail's share of sigma_t %.2f\n", share);
+    EXPECT_GT(share, 10.0 * kTolerance);
+}
+
+// A detail of strength 0 through the GPU's two-layer loop is the texture alone.
+TEST_F(GpuDensityTexture, DetailStrengthZeroIsTheTextureAlone) {
+    ASSERT_TRUE(noiseGrid);
+    Scene s = scene(false, 1.0f);
+    const Scene alone = s;
+    TextureLayer d = makeDetailLayer();
+    d.strength = 0.0f;
+    d.density = noiseGrid;
+    d.mean = static_cast<float>(noiseGrid->activeBoxMean());
+    s.volumes[0].density_texture->detail = d;
+    auto a = renderer->render(s, request());
+    auto b = renderer->render(alone, request());
+    ASSERT_TRUE(a.ok() && b.ok());
+    const double err = relativeMeanAbsError(a.value().image, b.value().image);
+    std::printf("[gpu texture] detail strength 0 vs the texture alone %.2e\n", err);
+    EXPECT_LT(err, 1e-6);
+}
+
+// height_falloff inside a vdb volume (issue 15: "inside any local volume"): the GPU's vdbDensity
+// (voxelize and the vdb fog shadow march) against the CPU, without a texture (the vdb variant) and
+// with one; the falloff's share of sigma_t is far above the tolerance.
+TEST_F(GpuDensityTexture, VdbHeightFalloffMatchesCpu) {
+    ASSERT_TRUE(ballGrid);
+    Scene s = scene(true, 1.0f);
+    s.volumes.erase(s.volumes.begin());  // the ball alone
+    s.volumes[0].density_texture.reset();
+    s.volumes[0].medium.scattering = glm::vec3(3.0f);
+    const Scene flat = s;
+    s.volumes[0].height_falloff = 1.5f;
+    const FroxelResult cpu = renderFroxelCpu(s, request());
+    auto gpu = renderer->render(s, request(), true);
+    ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+    const double mediaErr = relativeMeanAbsError(asImage(gpu.value().volumes.mediaExtinction), asImage(cpu.volumes.mediaExtinction));
+    const double imageErr = relativeMeanAbsError(gpu.value().image, cpu.image);
+    const double share = relativeMeanAbsError(asImage(renderFroxelCpu(flat, request()).volumes.mediaExtinction),
+                                              asImage(cpu.volumes.mediaExtinction));
+    std::printf("[gpu-vs-cpu vdb height_falloff] sigma_t %.2e image %.2e (the falloff's share %.2f)\n", mediaErr, imageErr, share);
+    EXPECT_LT(mediaErr, kTolerance);
+    EXPECT_LT(imageErr, kTolerance);
+    EXPECT_GT(share, 10.0 * kTolerance);
+    s.volumes[0].density_texture = texture(noiseGrid, 1.0f, 1.0f, {0.0f, 0.5f, 0.0f});
+    expectMatchesCpu(s, "vdb, height_falloff");
+}

@@ -510,7 +510,7 @@ TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
          "scene.json: volumes[0].transform.rotation: unknown key; allowed in a transform: translation, rotation_deg, scale"},
         {R"({"brume_scene": 1, "volumes": [{"type": "vdb", "file": "a.vdb", "scale": 2}]})",
          "scene.json: volumes[0].scale: unknown key; allowed in a vdb volume: type, name, file, grid, encoding, transform, "
-         "density_scale, density_texture, medium, keys"},
+         "density_scale, height_falloff, density_texture, medium, keys"},
         {R"({"brume_scene": 1, "geometry": [{"type": "sphere", "centre": [0, 1, 0]}]})",
          "scene.json: geometry[0].centre: unknown key (did you mean \"center\"?); allowed in a sphere: type, name, center, "
          "radius, albedo, emission"},
@@ -529,13 +529,18 @@ TEST(SceneJsonKeys, UnknownKeyAtEveryNestingLevel) {
 TEST(SceneJsonKeys, MisspeltKeyInsideDensityTexture) {
     EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"fiel": "noise.vdb"}}]})"),
               "scene.json: volumes[0].density_texture.fiel: unknown key (did you mean \"file\"?); allowed in "
-              "density_texture: file, grid, tile_size_m, scroll_mps, strength, exponent");
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength, exponent, detail");
     EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"file": "n.vdb", "strenght": 2}}]})"),
               "scene.json: volumes[0].density_texture.strenght: unknown key (did you mean \"strength\"?); allowed in "
-              "density_texture: file, grid, tile_size_m, scroll_mps, strength, exponent");
+              "density_texture: file, grid, tile_size_m, scroll_mps, strength, exponent, detail");
     // Without the typo the missing file is what is wrong.
     EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"grid": "density"}}]})"),
               "scene.json: volumes[0].density_texture.file: missing required key (the OpenVDB file of the texture)");
+    // The detail layer: its own keys, named with their full path.
+    EXPECT_EQ(parseError(R"({"brume_scene": 1, "volumes": [{"type": "box", "density_texture": {"file": "n.vdb",
+                            "detail": {"file": "d.vdb", "strenth": 1}}}]})"),
+              "scene.json: volumes[0].density_texture.detail.strenth: unknown key (did you mean \"strength\"?); allowed in "
+              "density_texture.detail: file, grid, tile_size_m, scroll_mps, strength, exponent");
 }
 
 // Every key written in a shipped scene is read: the strict reader accepts the file, and each of the

@@ -121,6 +121,10 @@ void expectVolumeData(const std::string& p) {
     EXPECT_MEMBER(p, VolumeData, textureScroll);
     EXPECT_MEMBER(p, VolumeData, textureMin);
     EXPECT_MEMBER(p, VolumeData, textureSize);
+    EXPECT_MEMBER(p, VolumeData, detailParams);
+    EXPECT_MEMBER(p, VolumeData, detailScroll);
+    EXPECT_MEMBER(p, VolumeData, detailMin);
+    EXPECT_MEMBER(p, VolumeData, detailSize);
 }
 
 void expectLightData(const std::string& p) {
@@ -178,7 +182,7 @@ TEST(SharedLayout, SunShadowFitStd430MatchesCpp) {
 
 // The sizes the header comments promise (and that the GPU buffers are sized with).
 TEST(SharedLayout, SizesAreTheDocumentedOnes) {
-    EXPECT_EQ(sizeof(shd::VolumeData), 240u);
+    EXPECT_EQ(sizeof(shd::VolumeData), 304u);
     EXPECT_EQ(sizeof(shd::LightData), 80u);
     EXPECT_EQ(sizeof(shd::FrameUniforms), 416u);
 }

@@ -152,12 +152,16 @@ Result<Scene> parseEdited(const json& j, const Scene& current) {
         std::optional<DensityTexture>& t = n.volumes[i].density_texture;
         const std::optional<DensityTexture>& was = current.volumes[i].density_texture;
         if (!t) continue;
-        if (was && was->density && t->file == was->file && t->grid == was->grid) {
-            t->density = was->density;
-            // The mean is of value^exponent: measured again when the exponent changes.
-            t->mean = t->exponent == was->exponent ? was->mean : static_cast<float>(was->density->activeBoxMean(t->exponent));
-            continue;
-        }
+        // A layer is kept when its file and grid stay; the mean is of value^exponent: measured again
+        // when the exponent changes.
+        auto keep = [](TextureLayer& layer, const TextureLayer& before) {
+            if (!before.density || layer.file != before.file || layer.grid != before.grid) return false;
+            layer.density = before.density;
+            layer.mean = layer.exponent == before.exponent ? before.mean
+                                                           : static_cast<float>(before.density->activeBoxMean(layer.exponent));
+            return true;
+        };
+        if (was && keep(*t, *was) && (!t->detail || (was->detail && keep(*t->detail, *was->detail)))) continue;
         std::vector<std::string> warnings;
         Result<void> load = loadDensityTexture(*t, n, "edit", i, VdbImportOptions{}.memoryLimitBytes, warnings);
         if (!load) return load.error();

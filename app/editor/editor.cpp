@@ -150,10 +150,10 @@ void Editor::drop(const std::string& path) {
     const std::string ext = std::filesystem::path(path).extension().string();
     Result<void> r;
     if (ext == ".vdb") r = fileAction({"import", {"vdb", path}});
-    else if (ext == ".obj") r = fileAction({"import", {"mesh", path}});
+    else if (ext == ".obj" || ext == ".ply") r = fileAction({"import", {"mesh", path}});
     else if (ext == ".json" && doc_.dirty()) pendingOpen = path;
     else if (ext == ".json") r = fileAction({"open", {path}});
-    else r = Error{path + ": drop a scene (.json), an OpenVDB file (.vdb) or a closed mesh (.obj)."};
+    else r = Error{path + ": drop a scene (.json), an OpenVDB file (.vdb) or a closed mesh (.obj, .ply)."};
     if (!r) files_.message(r.error().message);
 }
 

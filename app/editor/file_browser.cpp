@@ -25,7 +25,7 @@ void request(Editor& e, FilesUi& f, const std::string& verb, const std::string& 
 }
 
 const char* extensionFor(BrowseFor b) {
-    return b == BrowseFor::ImportVdb ? ".vdb" : b == BrowseFor::ImportMesh ? ".obj" : ".json";
+    return b == BrowseFor::ImportVdb ? ".vdb" : b == BrowseFor::ImportMesh ? ".obj|.ply" : ".json";
 }
 
 void listDir(FilesUi& f) {
@@ -144,7 +144,7 @@ void fileMenuItems(Editor& e, FilesUi& f, bool& quit, double now) {
     if (ImGui::MenuItem("Save As...")) browse(e, f, BrowseFor::SaveAs);
     ImGui::Separator();
     if (ImGui::MenuItem("Import VDB...")) browse(e, f, BrowseFor::ImportVdb);
-    if (ImGui::MenuItem("Import Mesh (OBJ)...")) browse(e, f, BrowseFor::ImportMesh);
+    if (ImGui::MenuItem("Import Mesh (OBJ, PLY)...")) browse(e, f, BrowseFor::ImportMesh);
     ImGui::Separator();
     if (ImGui::MenuItem("Quit")) quit = true;
 }

@@ -190,10 +190,16 @@ Result<Volume> importMeshVolume(const Scene& scene, const std::string& sceneDir,
 }
 
 Scene rebasedTo(Scene scene, const std::string& dir) {
+    auto rebase = [&](std::string& file) {
+        if (file.empty()) return;
+        const fs::path p(file);
+        file = relativeIfInside((p.is_absolute() ? p : fs::path(scene.baseDir) / p).string(), dir);
+    };
     for (Volume& v : scene.volumes) {
-        if ((v.type != VolumeType::Vdb && v.type != VolumeType::Mesh) || v.file.empty()) continue;
-        const fs::path p(v.file);
-        v.file = relativeIfInside((p.is_absolute() ? p : fs::path(scene.baseDir) / p).string(), dir);
+        if (v.type == VolumeType::Vdb || v.type == VolumeType::Mesh) rebase(v.file);
+        // Density textures and their detail layers name files relative to the scene too.
+        if (v.density_texture) rebase(v.density_texture->file);
+        if (v.density_texture && v.density_texture->detail) rebase(v.density_texture->detail->file);
     }
     scene.baseDir = dir;
     return scene;
@@ -209,7 +215,9 @@ Result<std::vector<DirEntry>> listDirectory(const std::string& dir, const std::s
         const std::string name = it->path().filename().string();
         if (name.empty() || name[0] == '.') continue;
         const bool isDir = it->is_directory(ec);
-        if (!isDir && !ext.empty() && it->path().extension().string() != ext) continue;
+        // ext: one extension or several separated by '|' (".obj|.ply").
+        if (!isDir && !ext.empty() && ("|" + ext + "|").find("|" + it->path().extension().string() + "|") == std::string::npos)
+            continue;
         out.push_back({name, isDir});
     }
     std::sort(out.begin(), out.end(), [](const DirEntry& a, const DirEntry& b) {

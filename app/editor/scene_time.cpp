@@ -12,6 +12,9 @@ bool sceneScrolls(const Scene& scene) {
     for (const Volume& v : scene.volumes)
         if (v.density_texture && v.density_texture->scroll_mps != glm::vec3(0.0f) && v.density_texture->strength != 0.0f)
             return true;
+        else if (v.density_texture && v.density_texture->detail && v.density_texture->detail->scroll_mps != glm::vec3(0.0f) &&
+                 v.density_texture->detail->strength != 0.0f)
+            return true;
     return false;
 }
 

@@ -302,7 +302,7 @@ void help(UiState& ui) {
         {"Ctrl+S", "save (atomic); File > Save As for a new path"},
         {"Ctrl+N / Ctrl+O", "new scene (camera, sun, ground) / open (asks about unsaved changes)"},
         {"File > Import VDB, or drop", "a .vdb dropped on the window is imported, a .json opened"},
-        {"File > Import Mesh, or drop", "a closed .obj mesh becomes a fog hull (a mesh volume)"},
+        {"File > Import Mesh, or drop", "a closed .obj or .ply mesh becomes a fog hull (a mesh volume)"},
         {"Ctrl+D / Delete", "duplicate / delete the selection"},
         {"Escape", "select nothing (scene settings)"},
         {"F1", "this help"},

@@ -23,8 +23,8 @@ BRUME_FUNC float shapeDistance(int shape, vec3 q) {
 // The edge fade at shape distance u (< 1): 1 inside 1 - fade, smoothstep down to 0 at u = 1.
 BRUME_FUNC float edgeFade(float u, float fade) { return fade > 0.0f ? 1.0f - smoothstep(1.0f - fade, 1.0f, u) : 1.0f; }
 
-// height_falloff: exp(-falloff (y - bottom)), bottom the volume's lowest world point. Exactly 1 when
-// the falloff is 0 (the default).
+// height_falloff: exp(-falloff (y - bottom)), bottom the volume's lowest world point (box kind and vdb:
+// params.z, params.w). Exactly 1 when the falloff is 0 (the default).
 BRUME_FUNC float localHeightFactor(VolumeData v, float worldY) {
     return exp(-v.params.z * max(worldY - v.params.w, 0.0f));
 }

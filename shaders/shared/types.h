@@ -38,14 +38,15 @@ BRUME_CONST int INTEGRATE_GROUP_Y = 8;
 BRUME_CONST int SCREEN_GROUP_X = 8;
 BRUME_CONST int SCREEN_GROUP_Y = 8;
 
-// One fog volume, ready to evaluate. 240 bytes.
+// One fog volume, ready to evaluate. 304 bytes.
 struct VolumeData {
     mat4 localFromWorld;  // box: world -> unit cube [-0.5,0.5]^3; vdb: world -> grid index space
     vec4 sigmaS_g;        // rgb: scattering coefficient at density 1 [1/m]; a: phase g
     vec4 sigmaA;          // rgb: absorption coefficient at density 1 [1/m]; a: unused
     vec4 emission;        // rgb: emitted radiance per meter at density 1; a: unused
     vec4 params;          // box: x edge_fade, z height_falloff [1/m], w bottom: lowest world y [m]. height: x base_height, y falloff [1/m] or transition
-                          // height [m]. depth: x visibility_distance, y start_distance. vdb: x density_scale, y shortest voxel edge [m]
+                          // height [m]. depth: x visibility_distance, y start_distance. vdb: x density_scale, y shortest voxel edge [m],
+                          // z height_falloff [1/m], w bottom (as a box's)
     ivec4 kind;           // x: VOLUME_*; vdb: y byte offset of its grid in the GPU grid buffer, z 1 = has a grid,
                           // w byte offset of its occupancy cells after y (vdb.h), 0 = no culling;
                           // box: y SHAPE_*
@@ -56,6 +57,11 @@ struct VolumeData {
     vec4 textureScroll;   // xyz: scroll velocity [m/s]; w unused
     ivec4 textureMin;     // xyz: the grid's active index box minimum; w: byte offset in the GPU grid buffer
     ivec4 textureSize;    // xyz: active index box size in voxels (the period); w: 1 = has a texture
+    // The texture's detail layer, the same four fields (all zero when none; only with a texture).
+    vec4 detailParams;
+    vec4 detailScroll;
+    ivec4 detailMin;
+    ivec4 detailSize;
 };
 
 // One light, ready to evaluate. 80 bytes.
