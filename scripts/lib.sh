@@ -5,6 +5,11 @@ BRUME_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BRUME_BUILD="${BRUME_BUILD_DIR:-$BRUME_ROOT/build}"
 BRUME_SANITIZE_BUILD="${BRUME_SANITIZE_BUILD_DIR:-$BRUME_ROOT/build-sanitize}"
 
+# ccache keys on absolute paths and, with debug info, on the build folder: rewriting paths under the
+# checkout as relative ones lets a fresh clone elsewhere (CI's, a second worktree) reuse the cache.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$BRUME_ROOT}"
+export CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
+
 BRUME_PACKAGES=(
   cmake g++ pkg-config ccache
   libopenvdb-dev libnanovdb-dev libboost-iostreams-dev
