@@ -251,6 +251,29 @@ TEST(EditorAutosave, WritesWhileDirtyAtMostOncePerIntervalAndRemovesWhenSaved) {
     fs::remove_all(dir);
 }
 
+// Frames slower than the interval (a render under load) must not hold an edit back past it: the
+// tick writes as soon as waiting for the next one would pass the interval, and no earlier.
+TEST(EditorAutosave, ASlowNextFrameWritesNowInsteadOfPastTheInterval) {
+    const fs::path dir = tempDir("autosave_slow");
+    const std::string scenePath = (dir / "scene.json").string();
+    Document doc = loadDefault(scenePath);
+    Autosave autosave(recoveryPathFor(scenePath), 2.0);
+    run(doc, "set volumes[0].medium.phase_g -0.25");
+    ASSERT_TRUE(autosave.tick(doc, 10.0, 0.05).ok());
+    EXPECT_EQ(autosave.writes(), 1);
+    run(doc, "set volumes[0].edge_fade 0.5");
+    ASSERT_TRUE(autosave.tick(doc, 10.5, 1.0).ok());  // next tick at ~11.5: still within the interval
+    EXPECT_EQ(autosave.writes(), 1);
+    ASSERT_TRUE(autosave.tick(doc, 11.0, 1.5).ok());  // next tick at ~12.5: past it, so now
+    EXPECT_EQ(autosave.writes(), 2);
+    Result<Scene> recovered = loadSceneFile(autosave.path());
+    ASSERT_TRUE(recovered.ok()) << recovered.error().message;
+    EXPECT_TRUE(recovered.value() == doc.scene());
+    ASSERT_TRUE(autosave.tick(doc, 11.1, 5.0).ok());  // unchanged since: no rewrite, however slow
+    EXPECT_EQ(autosave.writes(), 2);
+    fs::remove_all(dir);
+}
+
 // The viewport keeps rendering a resting view until temporal accumulation has converged, then
 // stops; any change (an edit, the preset, the size) starts the count again.
 TEST(EditorAccumulation, RendersUntilConvergedThenStopsAndRestartsOnChange) {

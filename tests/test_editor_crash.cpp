@@ -185,11 +185,14 @@ TEST(EditorCrash, KillNineAtRandomMomentsOfAScriptedSessionLosesAtMostTheAutosav
         ASSERT_LE(k, session.steps.size());
         while (seen.size() < k) seen.push_back(killed);
         const Step& now = session.steps[k - 1];
-        // The last step recorded long enough before the kill that its autosave must be on disk.
+        // The last edit of this document recorded long enough before the kill that its autosave must
+        // be on disk. The step that switched documents (New, Open, Save As) carries the previous
+        // document's last edit: it is no edit of this one (edit == first).
         int mustHave = now.base;
         for (size_t i = 0; i < k; ++i) {
             const double age = std::chrono::duration<double>(killed - seen[i]).count();
-            if (session.steps[i].segment == now.segment && age > kAutosaveSeconds + kSlackSeconds)
+            if (session.steps[i].segment == now.segment && session.steps[i].edit > now.first &&
+                age > kAutosaveSeconds + kSlackSeconds)
                 mustHave = session.steps[i].edit;
         }
         std::printf("run %d (seed %u): killed after %zu of %zu lines, in segment %d, edit %d\n", run, seed, k,

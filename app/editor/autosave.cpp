@@ -1,5 +1,6 @@
 #include "autosave.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
@@ -21,7 +22,7 @@ std::string recoveryPathFor(const std::string& scenePath) {
     return (dir / "untitled.recovery.json").string();
 }
 
-Result<void> Autosave::tick(const Document& doc, double now) {
+Result<void> Autosave::tick(const Document& doc, double now, double nextTickIn) {
     if (!docPathKnown_ || doc.path() != docPath_) {
         const bool moved = docPathKnown_;
         docPath_ = doc.path();
@@ -38,7 +39,8 @@ Result<void> Autosave::tick(const Document& doc, double now) {
         if (fileExists_) discard();
         return {};
     }
-    if (doc.revision() == writtenRevision_ || now - lastWrite_ < interval_) return {};
+    // Waiting is fine only if the next call still comes within the interval of the last write.
+    if (doc.revision() == writtenRevision_ || now + std::max(nextTickIn, 0.0) - lastWrite_ < interval_) return {};
     lastWrite_ = now;
     writtenRevision_ = doc.revision();
     Result<void> r = saveSceneFile(doc.scene(), path_);

@@ -20,12 +20,15 @@ public:
         : path_(std::move(recoveryPath)), interval_(intervalSeconds) {}
 
     // Call every frame with a monotonic clock in seconds. Writes when the document is dirty, has
-    // changed since the last autosave and the interval has passed; removes the file once it is clean.
+    // changed since the last autosave and the interval has passed, or will have passed before the
+    // next call: `nextTickInSeconds` is the caller's estimate of that wait (the last frame's time),
+    // so a slow frame (a render under load) cannot hold an edit back for longer than the interval.
+    // Removes the file once the document is clean.
     // The file follows the document's path: after a Save As it moves beside the new file (a
     // recovery file already there predates that save and is removed), so a restart on the file
     // being edited finds it. New and Open call retarget themselves (a recovery file beside the
     // opened scene is kept: the editor offers it).
-    Result<void> tick(const Document& doc, double nowSeconds);
+    Result<void> tick(const Document& doc, double nowSeconds, double nextTickInSeconds = 0.0);
     // Removes the recovery file (clean exit).
     void discard();
     // Removes the recovery file and writes the next one to `recoveryPath` (another scene opened).
