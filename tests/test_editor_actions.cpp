@@ -11,6 +11,7 @@
 #include "app/editor/autosave.h"
 #include "app/editor/document.h"
 #include "app/editor/gizmo_math.h"
+#include "app/editor/present_path.h"
 #include "app/editor/view.h"
 #include "io/scene_json.h"
 #include "shaders/shared/brume.h"
@@ -728,4 +729,21 @@ TEST(EditorActions, TextThatIsNotUtf8IsAnErrorNotACrash) {
         EXPECT_EQ(back.value().args, a.value().args) << formatAction(a.value());
     }
     EXPECT_EQ(doc.scene().volumes[0].name, "brume \xC3\xA9t\xC3\xA9 \xE2\x9B\x85");
+}
+
+// The presenter's choice of path (app/editor/present_path.h): frames at the view's size (every
+// frame at rest) keep the exact per-pixel display pass; smaller ones are tone mapped at their own
+// size and blitted up, unless the window's format cannot be blitted with linear filtering.
+TEST(EditorPresentPath, RestIsExactCoarseIsBlittedAndWithoutBlitFallsBack) {
+    using editor::PresentPath;
+    using editor::choosePresentPath;
+    const glm::ivec2 window(1280, 720), coarse(256, 144);
+    EXPECT_EQ(choosePresentPath(false, glm::ivec2(0), window, true), PresentPath::Background);
+    EXPECT_EQ(choosePresentPath(false, glm::ivec2(0), window, false), PresentPath::Background);
+    EXPECT_EQ(choosePresentPath(true, window, window, true), PresentPath::Window);
+    EXPECT_EQ(choosePresentPath(true, window, window, false), PresentPath::Window);
+    EXPECT_EQ(choosePresentPath(true, coarse, window, true), PresentPath::Upscale);
+    EXPECT_EQ(choosePresentPath(true, coarse, window, false), PresentPath::Window);
+    // A source of another aspect (a frame after a resize, before the next render) is scaled too.
+    EXPECT_EQ(choosePresentPath(true, glm::ivec2(1280, 700), window, true), PresentPath::Upscale);
 }

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "core/image.h"
 #include "io/image_io.h"
 #include "io/scene_json.h"
+#include "shaders/shared/tonemap.h"
 #include "mesh_test_util.h"
 #include "vdb_test_util.h"
 
@@ -134,6 +136,61 @@ TEST(EditorWindow, CoarseWhileDraggingThenAtRestEqualsTheHeadlessRender) {
     const double err = relativeMeanAbsError(a.value(), b.value());
     std::printf("editor at rest after a drag vs brume render --frames 4: relative mean abs error %.3g\n", err);
     EXPECT_LT(err, 0.01);
+    fs::remove_all(dir);
+}
+
+// A coarse frame's display (app/editor/present_path.h, PresentPath::Upscale): the source is tone
+// mapped at its own size and its display bytes are scaled up bilinearly by the device's blit. With
+// the scale fixed at 0.5 (budget 0), the coarse frames of a 160x90 window are the `low` preset at
+// 80x45 (the froxel tile of `low` at 0.5), so the window is `brume render` at 80x45 scaled up:
+// computed here on the CPU from the PNG's bytes, with the blit's texel centres and edge clamp.
+TEST(EditorWindow, CoarseFrameIsTheToneMappedSourceScaledUp) {
+    REQUIRE_XVFB();
+    const fs::path dir = tempDir("upscale");
+    // Frame 1 opens a group (coarse, 80x45, history restarted by the new size); frame 2 takes the
+    // screenshot while the group is open: the view rests, so it accumulates its second frame.
+    std::ofstream(dir / "coarse.txt") << "begin\nscreenshot \"" << (dir / "editor.png").string() << "\"\nend\nquit\n";
+    std::string log;
+    ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + kSmall + " --hide-ui --bench --interactive-scale 0.5" +
+                 " --frame-budget-ms 0 --script " + quoted((dir / "coarse.txt").string()), &log), 0) << log;
+    EXPECT_NE(log.find("present: upscale (gpu)"), std::string::npos) << log;  // lavapipe blits BGRA8 linearly
+    ASSERT_EQ(sh(std::string(BRUME_EXE) + " render " + quoted((dir / "scene.json").string()) + " -o " +
+                 quoted((dir / "cli.png").string()) + " --width 80 --height 45 --quality low --frames 2", &log), 0) << log;
+    Result<Image> shot = readPngLinear((dir / "editor.png").string());
+    Result<Image> small = readPngLinear((dir / "cli.png").string());
+    ASSERT_TRUE(shot.ok() && small.ok());
+    ASSERT_EQ(shot.value().width, 160);
+    ASSERT_EQ(small.value().width, 80);
+    auto byte = [](float linear) { return std::lround(shd::srgbEncode(linear) * 255.0f); };  // the PNG's byte again
+    const Image& a = shot.value();
+    const Image& s = small.value();
+    auto texel = [&](int x, int y, int c) {
+        x = std::clamp(x, 0, s.width - 1);
+        y = std::clamp(y, 0, s.height - 1);
+        return static_cast<double>(byte(s.pixels[static_cast<size_t>(y) * s.width + x][c]));
+    };
+    double sumDiff = 0.0;
+    long maxDiff = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const double u = (x + 0.5) * s.width / a.width - 0.5, v = (y + 0.5) * s.height / a.height - 0.5;
+            const int x0 = static_cast<int>(std::floor(u)), y0 = static_cast<int>(std::floor(v));
+            const double wx = u - x0, wy = v - y0;
+            for (int c = 0; c < 3; ++c) {
+                const double top = texel(x0, y0, c) * (1 - wx) + texel(x0 + 1, y0, c) * wx;
+                const double bottom = texel(x0, y0 + 1, c) * (1 - wx) + texel(x0 + 1, y0 + 1, c) * wx;
+                const long want = std::lround(top * (1 - wy) + bottom * wy);
+                const long diff = std::labs(byte(a.pixels[static_cast<size_t>(y) * a.width + x][c]) - want);
+                sumDiff += static_cast<double>(diff);
+                maxDiff = std::max(maxDiff, diff);
+            }
+        }
+    const double meanDiff = sumDiff / (3.0 * a.width * a.height);
+    std::printf("coarse window vs brume render 80x45 scaled up on the CPU: mean %.3f, max %ld (8-bit steps)\n",
+                meanDiff, maxDiff);
+    // The blit filters 8-bit values with its own weight precision: a step of rounding apart.
+    EXPECT_LE(maxDiff, 2);
+    EXPECT_LT(meanDiff, 0.5);
     fs::remove_all(dir);
 }
 

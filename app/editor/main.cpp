@@ -270,7 +270,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         const bool capture = (last && !o.screenshot.empty()) || !editor.screenshotRequest.empty();
         Rgba8 shot;
         const double presentStart = seconds();
-        if (Result<void> r = presenter.present(editor.viewportImage(renderer), editor.viewSize(), ImGui::GetDrawData(),
+        if (Result<void> r = presenter.present(editor.viewportImage(renderer), editor.viewSize(), editor.renders(), ImGui::GetDrawData(),
                                                capture ? &shot : nullptr);
             !r) {
             if (gpu::isDeviceLost(r.error())) return std::fprintf(stderr, "%s\n", r.error().message.c_str()), kDeviceLost;
@@ -302,6 +302,8 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             std::vector<gpu::PassTiming> parts = rendered ? editor.lastRender()->passes : std::vector<gpu::PassTiming>{};
             parts.push_back({"before render (cpu)", (renderStart - (end - editor.frameMs / 1000.0)) * 1000.0});
             parts.push_back({"render call", (renderEnd - renderStart) * 1000.0});
+            if (Result<std::vector<gpu::PassTiming>> pp = presenter.lastParts(); pp)
+                parts.insert(parts.end(), pp.value().begin(), pp.value().end());
             stats.add(kind, editor.frameMs, parts, presentMs);
         }
         if (last) {
@@ -398,6 +400,7 @@ int runEditor(const Options& o) {
         editor.qualityTool.gpu = qualityPanelGpu(o);
         Result<std::unique_ptr<Presenter>> presenter = Presenter::create(window.handle, renderer.value()->device());
         if (!presenter) return fail(presenter.error().message, 1);
+        presenter.value()->measureParts(o.bench);
         code = editorLoop(o, editor, *presenter.value(), *renderer.value(), script.value(), loop);
         presenter.value().reset();
         if (o.validation) {

@@ -1,6 +1,8 @@
 #include "presenter.h"
 
 #include <algorithm>
+#include <chrono>
+#include <optional>
 #include <utility>
 
 #define GLFW_INCLUDE_VULKAN
@@ -9,6 +11,7 @@
 #include <imgui.h>
 
 #include "gpu/display_pass.h"
+#include "present_path.h"
 #include "gpu/resources.h"
 #include "gpu/vk_check.h"
 #include "gpu/vk_owner.h"
@@ -18,6 +21,10 @@ namespace brume::editor {
 using gpu::vkStruct;
 
 namespace {
+
+double nowMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // ImGui's backend reports Vulkan failures through a C callback; the next present() turns the
 // latest one into an Error.
@@ -60,8 +67,26 @@ struct Presenter::State {
     gpu::DescriptorPoolOwner descriptorPool;
     gpu::DisplayPass display;
     gpu::Buffer windowPixels;  // the display pass's output, copied into the swapchain image
+    // Coarse frames (PresentPath::Upscale): the display pass's bytes at the source's size, in an
+    // image of the window's format that a linear blit scales to the view.
+    bool canBlit = false;
+    gpu::Buffer sourcePixels;
+    gpu::GpuImage sourceDisplay;
     gpu::Buffer readback;      // screenshots
     bool imguiReady = false;
+    gpu::PassTimer timer;                    // the device's parts of a window frame (--bench)
+    std::vector<gpu::PassTiming> hostParts;  // the host's parts of the last present()
+    bool measureParts = false;
+    // What the display pass's output (windowPixels, or sourceDisplay for Upscale) holds, so that a
+    // frame with the same source skips the pass.
+    struct Shown {
+        VkImageView view = VK_NULL_HANDLE;
+        glm::ivec2 sourceSize{0}, viewSize{0}, window{0};
+        uint64_t generation = 0;
+        PresentPath path = PresentPath::Background;
+        bool operator==(const Shown&) const = default;
+    };
+    std::optional<Shown> shown;
 
     State(const gpu::Device& d, GLFWwindow* w) : device(d), window(w) {}
     ~State();
@@ -70,9 +95,11 @@ struct Presenter::State {
     Result<void> createSwapchain();
     Result<void> createCommands();
     Result<void> initImGui();
+    Result<void> ensureSourceDisplay(glm::ivec2 size);
     Result<void> ensureBuffer(gpu::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, gpu::Memory memory,
                               const char* name);
-    void record(uint32_t image, const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui, bool capture);
+    void record(uint32_t image, const gpu::OutputImage& source, glm::ivec2 viewSize, uint64_t generation, ImDrawData* ui,
+                bool capture);
 };
 
 Result<void> Presenter::State::chooseFormat() {
@@ -88,6 +115,8 @@ Result<void> Presenter::State::chooseFormat() {
     if (format.format != VK_FORMAT_B8G8R8A8_UNORM && format.format != VK_FORMAT_R8G8B8A8_UNORM)
         return Error{"The window surface offers no 8-bit UNORM RGBA format, which the editor needs."};
     bgra = format.format == VK_FORMAT_B8G8R8A8_UNORM;
+    canBlit = device.supportsFormat(format.format, VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                                       VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
     return {};
 }
 
@@ -220,6 +249,9 @@ Result<void> Presenter::State::createCommands() {
         BRUME_VK(vkCreateSemaphore(device.vk(), &s, nullptr, &sem), "create a semaphore");
         *owner = gpu::SemaphoreOwner(device.vk(), sem);
     }
+    Result<gpu::PassTimer> t = gpu::PassTimer::create(device, 4);
+    if (!t) return t.error();
+    timer = std::move(t.value());
     Result<gpu::DisplayPass> d = gpu::DisplayPass::create(device);
     if (!d) return d.error();
     display = std::move(d.value());
@@ -274,6 +306,23 @@ Result<void> Presenter::State::ensureBuffer(gpu::Buffer& b, VkDeviceSize size, V
     return {};
 }
 
+Result<void> Presenter::State::ensureSourceDisplay(glm::ivec2 size) {
+    const VkExtent3D extent{static_cast<uint32_t>(size.x), static_cast<uint32_t>(size.y), 1};
+    if (sourceDisplay.image && sourceDisplay.extent.width == extent.width && sourceDisplay.extent.height == extent.height)
+        return {};
+    sourceDisplay = gpu::GpuImage{};
+    Result<gpu::GpuImage> img = gpu::createImage(device, extent, false, format.format,
+                                                 // SAMPLED: createImage makes a view, which needs a view usage.
+                                                 VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                                     VK_IMAGE_USAGE_SAMPLED_BIT,
+                                                 "coarse display image");
+    if (!img) return img.error();
+    sourceDisplay = std::move(img.value());
+    return ensureBuffer(sourcePixels, static_cast<VkDeviceSize>(size.x) * size.y * 4,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::Memory::DeviceLocal,
+                        "coarse display pixels");
+}
+
 Presenter::State::~State() {
     vkDeviceWaitIdle(device.vk());
     if (imguiReady) ImGui_ImplVulkan_Shutdown();
@@ -296,6 +345,17 @@ Presenter::~Presenter() = default;
 GLFWwindow* Presenter::window() const { return s_->window; }
 
 void Presenter::newFrame() { ImGui_ImplVulkan_NewFrame(); }
+
+void Presenter::measureParts(bool on) { s_->measureParts = on; }
+
+Result<std::vector<gpu::PassTiming>> Presenter::lastParts() {
+    Result<std::vector<gpu::PassTiming>> gpuParts = s_->timer.read();
+    if (!gpuParts) return gpuParts.error();
+    std::vector<gpu::PassTiming> out;
+    for (gpu::PassTiming& p : gpuParts.value()) out.push_back({"present: " + p.name + " (gpu)", p.gpuMs});
+    for (const gpu::PassTiming& p : s_->hostParts) out.push_back({"present: " + p.name + " (cpu)", p.gpuMs});
+    return out;
+}
 
 Result<void> Presenter::waitForFrame() {
     const VkFence fence = s_->fence.get();
@@ -321,38 +381,87 @@ VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayo
 }  // namespace
 
 // Records: the renderer's output -> window pixels (display pass, or the background colour before
-// any render) -> window image (transfer), ImGui over it (render pass), and for a capture, window
-// image -> readback buffer.
-void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui,
-                              bool capture) {
+// any render) -> window image (transfer), or for a coarse frame (PresentPath::Upscale) the output ->
+// display bytes at its own size -> small image -> linear blit into the window image; then ImGui
+// over it (render pass), and for a capture, window image -> readback buffer.
+void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, glm::ivec2 viewSize, uint64_t generation,
+                              ImDrawData* ui, bool capture) {
     const VkImage image = images[index];
     VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkBeginCommandBuffer(cmd, &begin);
-    // The previous frame's copy read the pixel buffer; this frame rewrites it.
+    timer.reset(cmd);
+    timer.begin(cmd, "display");
+    const PresentPath path = choosePresentPath(source.view != VK_NULL_HANDLE, source.size, viewSize, canBlit);
+    const glm::ivec2 window(static_cast<int>(extent.width), static_cast<int>(extent.height));
+    // The previous frame's copies read the pixel buffers; this frame rewrites them.
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0);
-    if (source.view) {
-        shd::DisplayParams p{};
+    shd::DisplayParams p{};
+    p.toneMap = source.displayValues ? 0 : 1;
+    p.bgra = bgra ? 1 : 0;
+    const Shown now{source.view, source.size, viewSize, window, generation, path};
+    const bool reuse = path != PresentPath::Background && shown == now;
+    shown = now;
+    if (reuse) {
+        // The pixel buffer (Window) or the small image (Upscale) still holds this source's bytes.
+    } else if (path == PresentPath::Window) {
         p.sourceSize = source.size;
         p.viewSize = viewSize;
-        p.windowSize = glm::ivec2(static_cast<int>(extent.width), static_cast<int>(extent.height));
-        p.toneMap = source.displayValues ? 0 : 1;
-        p.bgra = bgra ? 1 : 0;
+        p.windowSize = window;
         display.record(device, cmd, source, windowPixels.buffer.get(), p);
+    } else if (path == PresentPath::Upscale) {
+        // Tone mapped at the source's size (exact texels), then its bytes into the small image.
+        p.sourceSize = p.viewSize = p.windowSize = source.size;
+        display.record(device, cmd, source, sourcePixels.buffer.get(), p);
+        VkImageMemoryBarrier toFill = imageBarrier(sourceDisplay.image.get(), VK_IMAGE_LAYOUT_UNDEFINED,
+                                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toFill);
+        VkBufferImageCopy small{};
+        small.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        small.imageExtent = sourceDisplay.extent;
+        vkCmdCopyBufferToImage(cmd, sourcePixels.buffer.get(), sourceDisplay.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               1, &small);
+        VkImageMemoryBarrier toBlit = imageBarrier(sourceDisplay.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                                   VK_ACCESS_TRANSFER_READ_BIT);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toBlit);
     } else {
         const uint32_t grey = shd::DISPLAY_BACKGROUND * 0x010101u | (255u << 24u);
         vkCmdFillBuffer(cmd, windowPixels.buffer.get(), 0, VK_WHOLE_SIZE, grey);
         gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     }
+    timer.end(cmd);
+    timer.begin(cmd, path == PresentPath::Upscale ? "upscale" : "copy");
     VkImageMemoryBarrier toCopy = imageBarrier(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                                                VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toCopy);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {extent.width, extent.height, 1};
-    vkCmdCopyBufferToImage(cmd, windowPixels.buffer.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    if (path == PresentPath::Upscale) {
+        const glm::ivec2 view = glm::min(viewSize, window);
+        if (view != window) {  // the window past the view (a frame after a resize) is the background
+            const float grey = static_cast<float>(shd::DISPLAY_BACKGROUND) / 255.0f;
+            const VkClearColorValue clear{{grey, grey, grey, 1.0f}};
+            const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1, &all);
+            gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        }
+        VkImageBlit blit{};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.srcOffsets[1] = {source.size.x, source.size.y, 1};
+        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.dstOffsets[1] = {view.x, view.y, 1};
+        vkCmdBlitImage(cmd, sourceDisplay.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    } else {
+        vkCmdCopyBufferToImage(cmd, windowPixels.buffer.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    }
 
+    timer.end(cmd);
+    timer.begin(cmd, "ui");
     VkRenderPassBeginInfo rp = vkStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
     rp.renderPass = renderPass.get();
     rp.framebuffer = framebuffers[index].get();
@@ -360,6 +469,7 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, gl
     vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     if (ui) ImGui_ImplVulkan_RenderDrawData(ui, cmd);
     vkCmdEndRenderPass(cmd);
+    timer.end(cmd);
 
     if (capture) {
         VkImageMemoryBarrier toRead = imageBarrier(image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -381,7 +491,8 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, gl
     vkEndCommandBuffer(cmd);
 }
 
-Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui, Rgba8* capture) {
+Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewSize, uint64_t generation, ImDrawData* ui,
+                                Rgba8* capture) {
     State& s = *s_;
     const VkDevice device = s.device.vk();
     const VkFence fence = s.fence.get();
@@ -393,6 +504,13 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
         BRUME_VK(vkDeviceWaitIdle(device), "wait for the window before resizing");
         BRUME_TRY(s.createSwapchain());
     }
+    s.hostParts.clear();
+    double t0 = nowMs();
+    auto part = [&s, &t0](const char* name) {
+        const double t = nowMs();
+        s.hostParts.push_back({name, t - t0});
+        t0 = t;
+    };
     uint32_t index = 0;
     const VkSemaphore acquired = s.acquired.get(), rendered = s.rendered.get();
     VkResult r = vkAcquireNextImageKHR(device, s.swapchain.get(), UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
@@ -401,13 +519,17 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
         return s.createSwapchain();  // the next frame draws
     }
     if (r != VK_SUBOPTIMAL_KHR) BRUME_VK(r, "get the next window image");
+    part("acquire");
     BRUME_VK(vkResetFences(device, 1, &fence), "reset the window fence");
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(s.extent.width) * s.extent.height * 4;
     BRUME_TRY(s.ensureBuffer(s.windowPixels, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::Memory::DeviceLocal, "window pixels"));
+    if (source.view && choosePresentPath(true, source.size, viewSize, s.canBlit) == PresentPath::Upscale)
+        BRUME_TRY(s.ensureSourceDisplay(source.size));
     if (capture)
         BRUME_TRY(s.ensureBuffer(s.readback, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::Memory::Readback, "screenshot"));
-    s.record(index, source, viewSize, ui, capture != nullptr);
+    s.record(index, source, viewSize, generation, ui, capture != nullptr);
+    part("record");
 
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
     VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
@@ -419,6 +541,11 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &rendered;
     BRUME_VK(vkQueueSubmit(s.device.queue(), 1, &submit, fence), "submit the window frame");
+    part("submit");
+    if (s.measureParts) {
+        BRUME_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "wait for the window frame");
+        part("device wait");
+    }
     VkPresentInfoKHR present = vkStruct<VkPresentInfoKHR>(VK_STRUCTURE_TYPE_PRESENT_INFO_KHR);
     present.waitSemaphoreCount = 1;
     present.pWaitSemaphores = &rendered;
@@ -428,6 +555,7 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
     present.pImageIndices = &index;
     r = vkQueuePresentKHR(s.device.queue(), &present);
     if (r != VK_SUBOPTIMAL_KHR && r != VK_ERROR_OUT_OF_DATE_KHR) BRUME_VK(r, "show the window frame");
+    part("queue present");
     if (gImGuiResult != VK_SUCCESS) return gpu::vkError("draw the UI", std::exchange(gImGuiResult, VK_SUCCESS));
     if (capture) {
         BRUME_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "wait for the screenshot");

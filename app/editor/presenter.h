@@ -18,6 +18,7 @@
 
 #include "core/result.h"
 #include "gpu/gpu_renderer.h"
+#include "gpu/timing.h"
 
 struct GLFWwindow;
 struct ImDrawData;
@@ -44,13 +45,24 @@ public:
 
     // Draws `source` (the renderer's output; no image: nothing rendered yet) scaled to `viewSize`
     // at the window's top-left (the rest is cleared), `ui` over it, and presents. With `capture`,
-    // also returns the window image as presented.
-    Result<void> present(const gpu::OutputImage& source, glm::ivec2 viewSize, ImDrawData* ui, Rgba8* capture = nullptr);
+    // also returns the window image as presented. `generation` names the source's content (the
+    // editor's render count): while it, the source and the sizes stay the same, the display pass's
+    // last output is reused and only copied (a frame that redraws the UI alone).
+    Result<void> present(const gpu::OutputImage& source, glm::ivec2 viewSize, uint64_t generation, ImDrawData* ui,
+                         Rgba8* capture = nullptr);
     // Waits until the last present()'s commands have finished: call before the renderer records
     // again, since they read its output image (which a new size also destroys).
     Result<void> waitForFrame();
     // Call from the UI before ImGui::NewFrame.
     void newFrame();
+    // The last present()'s parts (brume-editor --bench): the device's passes (display, copy, ui) from
+    // timestamps, waiting for that frame if needed, and the host's (acquire, record, submit, queue
+    // present) from the wall clock; names end in "(gpu)" or "(cpu)".
+    // With `on`, present() also waits for the device between submitting and presenting, so that
+    // the device's work and the window system's copy are timed apart (the software swapchain waits
+    // for the frame in vkQueuePresentKHR anyway).
+    void measureParts(bool on);
+    Result<std::vector<gpu::PassTiming>> lastParts();
     GLFWwindow* window() const;
 
     struct State;
