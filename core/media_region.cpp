@@ -60,6 +60,16 @@ FroxelRegion mediaFroxelRegion(const CompiledScene& cs, const shd::FrameUniforms
     return FroxelRegion{lo, hi};
 }
 
+FroxelRegion temporalFroxelRegion(const FroxelRegion& media, glm::ivec3 dims) {
+    if (media.empty()) return FroxelRegion{};
+    return FroxelRegion{glm::max(media.lo - 1, glm::ivec3(0)), glm::min(media.hi + 1, dims)};
+}
+
+bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner) {
+    if (inner.empty()) return true;
+    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::greaterThanEqual(outer.hi, inner.hi));
+}
+
 namespace {
 
 // The convex set of points (the hull of `points`, swept along `sweep` to infinity when it is not

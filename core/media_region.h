@@ -26,6 +26,18 @@ struct FroxelRegion {
 // unbounded.
 FroxelRegion mediaFroxelRegion(const CompiledScene& cs, const shd::FrameUniforms& frame);
 
+// The froxels the GPU's temporal and integrate passes compute: the media region grown by the one
+// froxel of the temporal neighbourhood (shared/temporal.h step 5), within the grid. Outside it every
+// froxel's neighbourhood holds no media, so what a pass over the whole grid would write there is
+// known: a resolved S and sigma_t of 0 (the clamp in motion; at rest the froxel's own history, 0 by
+// the same argument one frame earlier; without history this frame's 0), hence integrated scattering
+// 0 and transmittance 1 up to the region and their values at its far end behind it. Empty when the
+// media region is.
+FroxelRegion temporalFroxelRegion(const FroxelRegion& media, glm::ivec3 dims);
+
+// Whether every froxel of `inner` lies in `outer` (an empty inner lies in any region).
+bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner);
+
 // Per volume of cs: whether it can add anything to the froxel passes of this frame (voxelize's media,
 // the fog transmittance toward a light at a froxel's sample point or a shadow volume cell). False
 // only when proved: the volume's bounds miss both the froxel frustum (every sample point, any

@@ -55,9 +55,18 @@ shd::Bounds neighbourhood(const std::vector<vec4>& vol, ivec3 dims, ivec3 c) {
 void resolveRow(FroxelVolumes& v, const HistoryVolume& in, HistoryVolume& out, const TemporalState& state, int y,
                 int s) {
     const ivec3 prevDims(state.frame.froxelDims);
+    const float weight = v.frame.temporal.x;
     for (int x = 0; x < v.dims.x; ++x) {
         const ivec3 c(x, y, s);
         const size_t i = indexOf(v.dims, c);
+        if (shd::temporalAtRest(v.frame.temporal)) {
+            // The view rests (the same grid as the history's) or there is no history to read.
+            const bool read = weight > 0.0f;
+            out.source[i] = shd::resolveTemporalAtRest(v.source[i], read ? in.source[i] : vec4(0.0f), weight);
+            out.extinction[i] =
+                shd::resolveTemporalAtRest(v.mediaExtinction[i], read ? in.extinction[i] : vec4(0.0f), weight);
+            continue;
+        }
         const shd::HistoryTaps k = shd::historyTaps(c, v.frame, state.frame, v.frame.temporal.x);
         const bool clampHistory = v.frame.temporal.y == 0.0f;
         const bool read = k.weight > 0.0f;

@@ -36,6 +36,9 @@ struct GpuOptions {
     std::string device;       // substring of the device name; empty = BRUME_DEVICE or automatic
     bool validation = false;  // also enabled by BRUME_VALIDATION=1
     PresentTarget present;    // headless unless set
+    // false: the froxel passes run over the whole grid, not the regions that can hold media
+    // (core/media_region.h); the images are the same, so this is for tests and measurements only.
+    bool froxelRegions = true;
 };
 
 class Device {

@@ -146,6 +146,7 @@ Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool& dirty
         }
     }
     res.historyUndefined = true;
+    res.historyWritten.fill(FroxelRegion{glm::ivec3(0), dims});  // undefined contents: anything
     res.froxelDims = dims;
     dirty = true;
     return {};
@@ -290,6 +291,17 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::FROXEL_GROUP_X), groups(r.mediaExtent.y, shd::FROXEL_GROUP_Y),
                           groups(r.mediaExtent.z, shd::FROXEL_GROUP_Z));
             break;
+        case Dispatch::RegionFroxels: {
+            const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
+            vkCmdDispatch(ctx.cmd, groups(e.x, shd::FROXEL_GROUP_X), groups(e.y, shd::FROXEL_GROUP_Y),
+                          groups(e.z, shd::FROXEL_GROUP_Z));
+            break;
+        }
+        case Dispatch::RegionColumns: {
+            const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
+            vkCmdDispatch(ctx.cmd, groups(e.x, shd::INTEGRATE_GROUP_X), groups(e.y, shd::INTEGRATE_GROUP_Y), 1);
+            break;
+        }
         case Dispatch::ExactFroxels:
             vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
             break;
@@ -347,6 +359,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         ctx.bindings = &bindings;
         ctx.res = &res;
         ctx.historyWriteIndex = historyWriteIndex;
+        ctx.variant = &variant;
         ctx.debugParams = debugParams;
         ctx.glow = &glow;
         ctx.ambient = ambient;
@@ -374,6 +387,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
                 geometry.record(ctx);
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;
+            case Record::Integrate: recordIntegrate(ctx); break;
             case Record::DebugView: recordDebugView(ctx); break;
             case Record::Glow: recordGlow(ctx); break;
         }

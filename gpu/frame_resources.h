@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/media_region.h"
 #include "frame_table.h"
 #include "resources.h"
 
@@ -46,6 +47,13 @@ struct FrameResources {
     // the media and source images is cleared to 0 when it is not the whole grid.
     glm::ivec3 mediaOrigin{0};
     glm::ivec3 mediaExtent{0};
+    // The froxels the temporal and integrate passes compute (core/media_region.h temporalFroxelRegion).
+    FroxelRegion temporalRegion;
+    // Per history side: the froxels that may hold non-zero values (the last region written there; the
+    // whole grid while unknown). The temporal pass clears the side it writes when that is not inside
+    // this frame's region, so that no history outside the region lingers (clearHistoryOut).
+    std::array<FroxelRegion, 2> historyWritten;
+    bool clearHistoryOut = false;
 
     Buffer vertices;  // GeometryVertex[] of the geometry pass (not in the descriptor set)
     // The grids behind buffers[vdbGrids], in order; held so that a new grid cannot reuse a freed one's address.

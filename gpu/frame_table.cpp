@@ -44,14 +44,15 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
-    // S and sigma_t blended with the reprojected history (shared/temporal.h), then copied back over
-    // sourceImage and mediaExtinction for the integrate pass.
-    {"temporal", "temporal", Variant::None, Dispatch::Froxels, When::Always, Record::TemporalCopy,
+    // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
+    // (core/media_region.h), then copied back over sourceImage and mediaExtinction for the integrate
+    // pass; at rest (_rest) each froxel reads only itself and writes in place.
+    {"temporal", "temporal", Variant::Temporal, Dispatch::RegionFroxels, When::Always, Record::TemporalCopy,
      {B::frame, B::previousFrame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource),
       historyIn(H::historyExtinction)},
      {historyOut(H::historySource), historyOut(H::historyExtinction), I::sourceImage, I::mediaExtinction}},
-    // Front to back along each froxel column (closed-form slabs).
-    {"integrate", "integrate", Variant::None, Dispatch::Columns, When::Always, Record::Dispatch,
+    // Front to back along each froxel column (closed-form slabs), over the temporal region's columns.
+    {"integrate", "integrate", Variant::None, Dispatch::RegionColumns, When::Always, Record::Integrate,
      {B::frame, I::sourceImage, I::mediaExtinction},
      {I::integratedScattering, I::integratedTransmittance}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
@@ -121,6 +122,7 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
         if (!k.localShadowMaps) name += "_nolocal";
     }
     if ((v == Variant::ShadowVolume || v == Variant::Light || v == Variant::Shapes) && k.shapes) name += "_shapes";
+    if (v == Variant::Temporal && k.temporalRest) name += "_rest";
     return name + ".comp";
 }
 
@@ -128,7 +130,7 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
     if (p.dispatch == Dispatch::Raster)
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    if (p.record == Record::TemporalCopy) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
     if (p.dispatch == Dispatch::ExactFroxels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;

@@ -144,6 +144,8 @@ struct ResList {
 enum class Dispatch : uint8_t {
     Froxels,      // one per froxel, FROXEL_GROUP_*
     MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), FROXEL_GROUP_*
+    RegionFroxels,  // one per froxel of the temporal region (FrameResources::temporalRegion), FROXEL_GROUP_*
+    RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
@@ -160,6 +162,7 @@ enum class Variant : uint8_t {
     ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
     Light,         // _novdb, _nosun, _nolocal for the lookups the frame lacks (VariantKey); then _shapes
     Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
+    Temporal,      // _rest when the view rests or there is no history (shared/temporal.h temporalAtRest)
 };
 
 // What selects a variant; one per frame.
@@ -172,6 +175,7 @@ struct VariantKey {
     bool sunShadowMap = true;     // FrameUniforms.sunShadowLight > 0
     bool localShadowMaps = true;  // some light has a point/spot shadow map (localShadowMapped)
     bool shapes = false;    // some volume needs the sampled fog shadow integral (shd::needsShapeShadows)
+    bool temporalRest = false;  // this frame's shd::temporalAtRest(frame.temporal)
     bool operator==(const VariantKey&) const = default;
 };
 
@@ -185,7 +189,9 @@ enum class When : uint8_t { Always, DebugView };
 enum class Record : uint8_t {
     Dispatch,      // bind the pipeline and the set, dispatch by the rule
     Geometry,      // the raster pass (pass_geometry.cpp)
-    TemporalCopy,  // dispatch, then copy the history's output over source and extinction (pass_temporal.cpp)
+    TemporalCopy,  // the history's output cleared where stale, the dispatch, then (in motion) the
+                   // history's output copied over source and extinction (pass_temporal.cpp)
+    Integrate,     // the integrated volumes cleared outside a partial temporal region, then the dispatch
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)

@@ -76,6 +76,7 @@ Result<std::unique_ptr<GpuRenderer>> GpuRenderer::create(const GpuOptions& optio
     Result<std::unique_ptr<Device>> d = Device::create(options);
     if (!d) return d.error();
     s->device = std::move(d.value());
+    s->froxelRegions = options.froxelRegions;
     BRUME_TRY(s->createCommands());
     BRUME_TRY(s->createPasses());
     return std::unique_ptr<GpuRenderer>(new GpuRenderer(std::move(s)));
@@ -223,7 +224,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
     // Voxelize and light run over the froxels that can hold media (core/media_region.h), rounded up
     // to whole workgroups: only those froxels' clusters are read.
-    const FroxelRegion media = mediaFroxelRegion(cs, frame);
+    const FroxelRegion media = s_->froxelRegions ? mediaFroxelRegion(cs, frame) : FroxelRegion{glm::ivec3(0), dims};
     r.mediaOrigin = media.lo;
     r.mediaExtent = media.hi - media.lo;
     const glm::ivec3 groupSize(shd::FROXEL_GROUP_X, shd::FROXEL_GROUP_Y, shd::FROXEL_GROUP_Z);
@@ -261,6 +262,13 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         applySunShadowSettings(frame, cs);
         applyVdbShadowSettings(frame, cs, request);
         setTemporalBlend(frame, s_->temporalState, t);
+        s_->variant.temporalRest = shd::temporalAtRest(frame.temporal);
+        // Temporal and integrate run over the media region and its neighbours; the history side written
+        // now is cleared first if an older frame left values outside them (FrameResources).
+        r.temporalRegion = temporalFroxelRegion(media, dims);
+        FroxelRegion& written = r.historyWritten[static_cast<size_t>(t.writeIndex)];
+        r.clearHistoryOut = !regionContains(r.temporalRegion, written);
+        written = FroxelRegion{glm::ivec3(0), dims};  // unknown until the frame has run
         frame.mediaOriginX = media.lo.x, frame.mediaOriginY = media.lo.y, frame.mediaOriginZ = media.lo.z;
         std::memcpy(r[BufferId::frame].mapped, &frame, sizeof(frame));
         std::memcpy(r[BufferId::previousFrame].mapped, &s_->temporalState.frame, sizeof(frame));
@@ -276,6 +284,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         Result<double> wall = s_->submitAndWait();
         if (!wall) return wall.error();
         wallMs = wall.value();
+        written = r.temporalRegion;
         endTemporalFrame(s_->temporalState, t, frame, sceneKey);
     }
 

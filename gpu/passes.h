@@ -22,6 +22,7 @@ struct PassContext {
     const FrameResources* res = nullptr;
     const ComputePass* pipeline = nullptr;  // compute passes: this frame's variant
     int historyWriteIndex = 0;              // the history side written this frame
+    const VariantKey* variant = nullptr;     // this frame's shader variants
     shd::DebugViewParams debugParams{};
     const std::vector<shd::GlowParams>* glow = nullptr;  // glow: one dispatch each
     glm::vec3 ambient{0.0f};    // geometry: sky radiance
@@ -58,9 +59,16 @@ private:
     FramebufferOwner framebuffer_;
 };
 
-// Temporal (Record::TemporalCopy): the dispatch, then the history's output copied over sourceImage
-// and mediaExtinction (the dispatch reads their neighbours, so it cannot write them).
+// Temporal (Record::TemporalCopy): the history side it writes cleared to 0 when it may hold values
+// outside this frame's temporal region (FrameResources::clearHistoryOut), the dispatch over the
+// region, then, in motion, the history's output copied over sourceImage and mediaExtinction in the
+// region (the dispatch reads their neighbours, so it cannot write them; the _rest variant does).
 void recordTemporal(const PassContext& ctx);
+
+// Integrate (Record::Integrate): when the temporal region is not the whole grid, the integrated
+// volumes cleared to what empty froxels integrate to (scattering 0, transmittance 1), then the
+// dispatch over the region's columns.
+void recordIntegrate(const PassContext& ctx);
 
 // Debug view (Record::DebugView): the view and slice as push constants, then the dispatch.
 void recordDebugView(const PassContext& ctx);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "frame_resources.h"
+#include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
 #include "spirv.h"
 #include "vk_check.h"
@@ -24,9 +25,11 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
                                                         VK_SHADER_STAGE_FRAGMENT_BIT;
         bindings[static_cast<size_t>(d.binding)] = {static_cast<uint32_t>(d.binding), d.type, 1, stages, nullptr};
     }
-    // The push constants are the debug view's or the glow pass's parameters; the other passes ignore them.
+    // The push constants are the debug view's, the glow pass's or the temporal and integrate passes'
+    // parameters; the other passes ignore them.
     return createDescriptorSet(device, bindings,
-                               static_cast<uint32_t>(std::max(sizeof(shd::DebugViewParams), sizeof(shd::GlowParams))),
+                               static_cast<uint32_t>(std::max({sizeof(shd::DebugViewParams), sizeof(shd::GlowParams),
+                                                               sizeof(shd::FroxelRegionParams)})),
                                "froxel");
 }
 

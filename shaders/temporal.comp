@@ -1,14 +1,35 @@
 // Temporal pass, between light and integrate (core: temporalPassCpu): each froxel's source S and
-// extinction sigma_t are blended with last frame's resolved values, reprojected, clamped to the
-// current neighbourhood and checked for NaN/Inf, by the rule written in shared/temporal.h. The
-// result goes to the history pair's *_OUT images; the frame then copies it into sourceImage and
+// extinction sigma_t are blended with last frame's resolved values by the rule written in
+// shared/temporal.h. Dispatched over the temporal region only (region.lo + invocation; core/
+// media_region.h temporalFroxelRegion): outside it S and sigma_t are 0 and the history was cleared.
+// In motion the history is reprojected, clamped to the current neighbourhood and checked for NaN/Inf;
+// the result goes to the history pair's *_OUT images, then is copied over sourceImage and
 // mediaExtinction for the integrate pass (this pass reads their neighbours, so it cannot write them).
+// Built with BRUME_TEMPORAL_REST (temporal_rest.comp) for frames whose view rests or that have no
+// history: each froxel reads only itself and its own history, and writes the result in place too.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
+
+#ifdef BRUME_TEMPORAL_REST
+
+void main() {
+    ivec3 id = region.lo.xyz + ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, region.hi.xyz))) return;
+    float weight = frame.temporal.x;
+    vec4 s = resolveTemporalAtRest(imageLoad(sourceImage, id), imageLoad(historySourceIn, id), weight);
+    vec4 e = resolveTemporalAtRest(imageLoad(mediaExtinction, id), imageLoad(historyExtinctionIn, id), weight);
+    imageStore(historySourceOut, id, s);
+    imageStore(historyExtinctionOut, id, e);
+    imageStore(sourceImage, id, s);
+    imageStore(mediaExtinction, id, e);
+}
+
+#else
 
 const ivec3 kNeighbours[7] = ivec3[7](ivec3(0, 0, 0), ivec3(-1, 0, 0), ivec3(1, 0, 0), ivec3(0, -1, 0),
                                       ivec3(0, 1, 0), ivec3(0, 0, -1), ivec3(0, 0, 1));
@@ -39,14 +60,15 @@ HistorySample readHistory(HistoryTaps k, int which) {
 }
 
 void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
+    ivec3 id = region.lo.xyz + ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, region.hi.xyz))) return;
     HistoryTaps k = historyTaps(id, frame, previousFrame, frame.temporal.x);
-    bool clampHistory = frame.temporal.y == 0.0f;
     bool read = k.weight > 0.0f;
     HistorySample histS = read ? readHistory(k, 0) : emptyHistorySample();
     HistorySample histE = read ? readHistory(k, 1) : emptyHistorySample();
-    imageStore(historySourceOut, id, resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight, clampHistory));
+    imageStore(historySourceOut, id, resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight, true));
     imageStore(historyExtinctionOut, id,
-               resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, clampHistory));
+               resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, true));
 }
+
+#endif

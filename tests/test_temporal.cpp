@@ -254,6 +254,17 @@ TEST(TemporalResolve, NonFiniteValuesNeverLeaveTheResolve) {
     EXPECT_NEAR(r.x, 1.25f, 1e-6f);
     const glm::vec4 rest = shd::resolveTemporal(glm::vec4(1.0f), history(glm::vec4(3.0f)), b, 0.5f, false);
     EXPECT_NEAR(rest.x, 2.0f, 1e-6f);
+    // At rest, and without history (weight 0, the history unread whatever it holds): the froxel's own
+    // history, unclamped; non-finite values as above.
+    EXPECT_NEAR(shd::resolveTemporalAtRest(glm::vec4(1.0f), glm::vec4(3.0f), 0.5f).x, 2.0f, 1e-6f);
+    EXPECT_EQ(shd::resolveTemporalAtRest(glm::vec4(nan), glm::vec4(5.0f), 0.9f), glm::vec4(5.0f));
+    EXPECT_EQ(shd::resolveTemporalAtRest(glm::vec4(1.5f), glm::vec4(inf), 0.9f), glm::vec4(1.5f));
+    EXPECT_EQ(shd::resolveTemporalAtRest(glm::vec4(nan), glm::vec4(nan), 0.9f), glm::vec4(0.0f));
+    EXPECT_EQ(shd::resolveTemporalAtRest(glm::vec4(1.5f), glm::vec4(nan), 0.0f), glm::vec4(1.5f));
+    EXPECT_EQ(shd::resolveTemporalAtRest(glm::vec4(-inf), glm::vec4(2.0f), 0.0f), glm::vec4(0.0f));
+    EXPECT_TRUE(shd::temporalAtRest(glm::vec4(0.9f, 1.0f, 0.0f, 0.0f)));
+    EXPECT_TRUE(shd::temporalAtRest(glm::vec4(0.0f)));
+    EXPECT_FALSE(shd::temporalAtRest(glm::vec4(0.9f, 0.0f, 0.0f, 0.0f)));
 }
 
 // The convergence curve: with a static camera, the error against the reference falls as frames

@@ -27,6 +27,14 @@ struct ExactListHeader {
 // Invocations per workgroup of the exact light pass (one per listed froxel).
 BRUME_CONST int LIGHT_EXACT_GROUP = 64;
 
+// The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis
+// (core/media_region.h temporalFroxelRegion; w unused). The rest of the grid is known without them:
+// the frame clears it (gpu/pass_temporal.cpp).
+struct FroxelRegionParams {
+    ivec4 lo;
+    ivec4 hi;
+};
+
 BRUME_NAMESPACE_END
 
 #endif

@@ -27,6 +27,10 @@
 // and the blend makes it the mean of n + 1: weight n / (n + 1) (temporalRestWeight), no clamp (it
 // can only pull the mean toward this frame's sample: the scene key already drops the history on
 // any edit). Past TEMPORAL_REST_CAP frames the weight stays history_weight, as in motion.
+// The reprojection is then the identity: each froxel reads its own history (resolveTemporalAtRest),
+// with weight frame.temporal.x exactly; the same function serves frames without history (weight 0).
+// (Steps 1-4 evaluated at rest round-trip the centre through the view and slice mapping, off by up to
+// 1e-3 froxel, and blended that much of the neighbours' history in every frame.)
 #ifndef BRUME_SHARED_TEMPORAL_H
 #define BRUME_SHARED_TEMPORAL_H
 
@@ -165,6 +169,19 @@ BRUME_FUNC vec4 resolveTemporal(vec4 current, HistorySample history, Bounds boun
     if (!allFinite4(current)) return clamped;
     return historyOk ? mix(current, clamped, weight) : current;
 }
+
+// Step 7 while the view rests, or without history (weight 0): `history` is the froxel's own
+// history value (no reprojection, no clamp). A non-finite current value is replaced by the history
+// (or 0), a non-finite history is rejected. Always finite.
+BRUME_FUNC vec4 resolveTemporalAtRest(vec4 current, vec4 history, float weight) {
+    bool historyOk = weight > 0.0f && allFinite4(history);
+    vec4 held = historyOk ? history : vec4(0.0f);
+    if (!allFinite4(current)) return held;
+    return historyOk ? mix(current, history, weight) : current;
+}
+
+// Whether a frame resolves with resolveTemporalAtRest (frame.temporal: x weight, y view rests).
+BRUME_FUNC bool temporalAtRest(vec4 temporal) { return temporal.y != 0.0f || temporal.x <= 0.0f; }
 
 BRUME_NAMESPACE_END
 
