@@ -1,5 +1,6 @@
 // The editor's viewport on the device: the renderer's output image (GpuRenderer::outputImage) ->
-// a window-sized buffer of 8-bit pixels, through the PNG's display transform
+// a buffer of 8-bit pixels (window-sized, or the source's size for the editor's coarse frames,
+// app/editor/present_path.h), through the PNG's display transform
 // (shaders/display.comp, shaders/shared/display.h), which the presenter copies into the
 // swapchain image. It replaces a readback of the rgba32f image, a tone map on the CPU and an
 // upload (docs/editor.md).

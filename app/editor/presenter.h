@@ -1,8 +1,9 @@
 // The editor window's Vulkan side, on the renderer's device (gpu::Device created with a
 // PresentTarget for the window: one instance, one device choice, one queue that renders and
 // presents). Each frame: the display pass (gpu/display_pass.h) turns the renderer's output image
-// into the window's 8-bit pixels on the device, a copy puts them in the swapchain image, and Dear
-// ImGui draws over them in a render pass that loads them. The rendered image never visits the CPU
+// into the window's 8-bit pixels on the device, a copy puts them in the swapchain image (a coarse
+// frame: its pixels at the source's size, blitted up; present_path.h), and Dear ImGui draws over
+// them in a render pass that loads them. The rendered image never visits the CPU
 // (a screenshot reads the window image back).
 //
 // One frame in flight (one fence): the renderer waits for its own frame anyway, so a second
