@@ -35,12 +35,12 @@ const std::array<PassDecl, 11> kPasses{{
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
-    {"light", "light", Variant::Light, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
+    {"light", "light", Variant::Shapes, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
-    {"light exact", "light_exact", Variant::Light, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
+    {"light exact", "light_exact", Variant::Shapes, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
@@ -116,12 +116,8 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
     } else if (v == Variant::ShadowVolume && k.vdb) {
         name += "_vdb";
         if (quantized) name += std::string("_") + toString(k.encoding);
-    } else if (v == Variant::Light) {
-        if (!k.vdbShadows) name += "_novdb";
-        if (!k.sunShadowMap) name += "_nosun";
-        if (!k.localShadowMaps) name += "_nolocal";
     }
-    if ((v == Variant::ShadowVolume || v == Variant::Light || v == Variant::Shapes) && k.shapes) name += "_shapes";
+    if ((v == Variant::ShadowVolume || v == Variant::Shapes) && k.shapes) name += "_shapes";
     if (v == Variant::Temporal && k.temporalRest) name += "_rest";
     return name + ".comp";
 }

@@ -160,7 +160,6 @@ enum class Variant : uint8_t {
     None,          // the shader as named
     Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
     ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
-    Light,         // _novdb, _nosun, _nolocal for the lookups the frame lacks (VariantKey); then _shapes
     Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
     Temporal,      // _rest when the view rests or there is no history (shared/temporal.h temporalAtRest)
 };
@@ -170,10 +169,6 @@ struct VariantKey {
     bool vdb = false;       // the scene has vdb volumes
     bool textures = false;  // some volume has a density texture
     VdbEncoding encoding = VdbEncoding::Float;
-    // The light passes' lookups (light_body.glsl); false compiles one out, where it would return 1.
-    bool vdbShadows = true;       // FrameUniforms.vdbShadowSamples > 0
-    bool sunShadowMap = true;     // FrameUniforms.sunShadowLight > 0
-    bool localShadowMaps = true;  // some light has a point/spot shadow map (localShadowMapped)
     bool shapes = false;    // some volume needs the sampled fog shadow integral (shd::needsShapeShadows)
     bool temporalRest = false;  // this frame's shd::temporalAtRest(frame.temporal)
     bool operator==(const VariantKey&) const = default;

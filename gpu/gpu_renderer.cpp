@@ -206,12 +206,6 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadowReduction, sunBytes,
                           localBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
-    // The light passes compile out the lookups this frame lacks (frame_table.h VariantKey).
-    s_->variant.vdbShadows = frame.vdbShadowSamples > 0;
-    s_->variant.sunShadowMap = frame.sunShadowLight > 0;
-    s_->variant.localShadowMaps = std::any_of(cs.lights.begin(), cs.lights.end(), [&](const shd::LightData& l) {
-        return shd::localShadowMapped(l, frame.localShadowTexels);
-    });
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r[BufferId::volumes].mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));
     if (!cs.lights.empty()) std::memcpy(r[BufferId::lights].mapped, cs.lights.data(), cs.lights.size() * sizeof(shd::LightData));

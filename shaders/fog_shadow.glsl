@@ -36,6 +36,34 @@ ShadowBlend blendShadowCells(int light, ShadowLookup k) {
                        shadowCell(light, k, 0, 1, 1), shadowCell(light, k, 1, 1, 1), k.weights);
 }
 
+// The 8 cells of lookup k as offsets inside one light's layer, and the layer's size: computed once
+// per froxel, so each light's blend costs one multiply-add per cell instead of shadowVolumeIndex's
+// chain (the same entries: shadowVolumeIndex(cells, light, c) = light * layer + offset(c)).
+struct ShadowCorners {
+    int layer;
+    ivec4 lower;  // c000, c001, c010, c011 (c<z><y><x>, shadow_volume.h shadowBlend)
+    ivec4 upper;  // c100, c101, c110, c111
+};
+
+ShadowCorners shadowCorners(ShadowLookup k) {
+    ShadowCorners c;
+    c.layer = k.cells.z * k.cells.y * k.cells.x;
+    ivec2 y = ivec2(k.cell.y, k.upper.y) * k.cells.x;
+    ivec2 z = ivec2(k.cell.z, k.upper.z) * (k.cells.y * k.cells.x);
+    c.lower = ivec4(z.x + y.x + k.cell.x, z.x + y.x + k.upper.x, z.x + y.y + k.cell.x, z.x + y.y + k.upper.x);
+    c.upper = ivec4(z.y + y.x + k.cell.x, z.y + y.x + k.upper.x, z.y + y.y + k.cell.x, z.y + y.y + k.upper.x);
+    return c;
+}
+
+// blendShadowCells with the corners of shadowCorners(k): the same cells, the same blend.
+ShadowBlend blendShadowCorners(int light, ShadowCorners c, vec3 weights) {
+    int base = light * c.layer;
+    return shadowBlend(shadowTransmittance[base + c.lower.x].rgb, shadowTransmittance[base + c.lower.y].rgb,
+                       shadowTransmittance[base + c.lower.z].rgb, shadowTransmittance[base + c.lower.w].rgb,
+                       shadowTransmittance[base + c.upper.x].rgb, shadowTransmittance[base + c.upper.y].rgb,
+                       shadowTransmittance[base + c.upper.z].rgb, shadowTransmittance[base + c.upper.w].rgb, weights);
+}
+
 // Light `light`'s vdb layer blended at k (core: vdbLayerBlend; shared/vdb_shadow.h): 1 without vdb
 // shadows. No exact fallback: only the shadow volume pass marches grids.
 vec3 vdbShadowBlend(int light, ShadowLookup k) {

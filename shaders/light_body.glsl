@@ -12,9 +12,9 @@
 //   light_exact.comp (indirect, one invocation per listed froxel): the whole sum again, with the
 //     exact fallback, in the same order, so S is what one pass computing both would write.
 // light.comp runs over the froxels that can hold media only (core/media_region.h), like voxelize.
-// Each is also built without the lookups a frame does not need (gpu/frame_table.h VariantKey; the
-// removed code would return 1 there): BRUME_LIGHT_NO_VDB (no vdb shadow layer),
-// BRUME_LIGHT_NO_SUN_MAP (no sun shadow map), BRUME_LIGHT_NO_LOCAL_MAPS (no point/spot shadow map).
+// Both are specialized (shared/specialization.h): the vdb layer, the sun shadow map and the point/spot
+// shadow maps are compiled out when the frame has none (SPEC_VDB_SHADOWS, SPEC_SUN_SHADOW_MAP,
+// SPEC_LOCAL_SHADOW_MAPS), where they would return 1. (They were #define variants before.)
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
 #include "fog_shadow.glsl"
@@ -27,44 +27,33 @@ layout(local_size_x = LIGHT_EXACT_GROUP) in;
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 #endif
 
-vec3 lightVdbShadowBlend(int light, ShadowLookup k) {
-#ifdef BRUME_LIGHT_NO_VDB
-    return vec3(1.0f);
-#else
-    return vdbShadowBlend(light, k);
-#endif
-}
+// The sun shadow map's visibility at p for the mapped sun (sun_shadow.glsl), looked up once per
+// froxel: only light frame.sunShadowLight - 1 is multiplied by it.
+float lightSunVisibility(vec3 p) { return sunShadowFroxelVisibility(frame.sunShadowLight - 1, p); }
 
-// Shadow maps' visibility of light i at p.
-float lightMapVisibility(int i, vec3 p) {
-    float v = 1.0f;
-#ifndef BRUME_LIGHT_NO_SUN_MAP
-    v *= sunShadowFroxelVisibility(i, p);
-#endif
-#ifndef BRUME_LIGHT_NO_LOCAL_MAPS
-    v *= localShadowVisibility(i, p);
-#endif
-    return v;
+// Shadow maps' visibility of light i at p; sun: lightSunVisibility(p).
+float lightMapVisibility(int i, vec3 p, float sun) {
+    return (i == frame.sunShadowLight - 1 ? sun : 1.0f) * localShadowVisibility(i, p);
 }
 
 #ifdef BRUME_LIGHT_EXACT
-// fog_shadow.glsl froxelFogTransmittance, with the vdb layer as this variant has it.
-vec3 exactFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
-    vec3 vdb = lightVdbShadowBlend(light, k);
-    ShadowBlend b = blendShadowCells(light, k);
+// fog_shadow.glsl froxelFogTransmittance, with the corners of shadowCorners.
+vec3 exactFogTransmittance(int light, ShadowLookup k, ShadowCorners c, vec3 p, vec3 toLight, float distance) {
+    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
+    vec3 vdb = vdbShadowBlend(light, k);
+    ShadowBlend b = blendShadowCorners(light, c, k.weights);
     if (b.trusted) return b.transmittance * vdb;
     return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
 }
 #else
 // The trusted blend of light `light`'s fog transmittance at k (fog_shadow.glsl
 // froxelFogTransmittance without its exact fallback); trusted = false where that fallback is needed.
-vec3 trustedFogTransmittance(int light, ShadowLookup k, out bool trusted) {
+vec3 trustedFogTransmittance(int light, ShadowLookup k, ShadowCorners c, out bool trusted) {
     trusted = true;
-    if (!fogShadowsLight(lights[light], frame.localFogShadows)) return vec3(1.0f);
-    ShadowBlend b = blendShadowCells(light, k);
+    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
+    ShadowBlend b = blendShadowCorners(light, c, k.weights);
     trusted = b.trusted;
-    return b.transmittance * lightVdbShadowBlend(light, k);
+    return b.transmittance * vdbShadowBlend(light, k);
 }
 
 // Appends froxel `id` to exactList; the invocation that opens a workgroup's worth of entries adds
@@ -101,7 +90,10 @@ void main() {
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
     ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadowReduction);
+    ShadowCorners corners = shadowCorners(shadow);
     float nearest = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
+    HgPhaseTerms phase = hgPhaseTerms(scatteringG.a);
+    float sun = lightSunVisibility(p);
     // Only the lights of this froxel's cluster (clusters.h), in the CPU's order.
     int record = clusterRecord(id, frame.froxelDims.xyz);
     bool all = lightClusters[record] == CLUSTER_ALL_LIGHTS;
@@ -109,14 +101,15 @@ void main() {
     for (int k = 0; k < count; ++k) {
         int i = all ? k : lightClusters[record + 1 + k];
         LightSample ls = evalLightFroxel(lights[i], p, nearest, frame);
-        vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, scatteringG.a);
+        vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, phase);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
 #ifdef BRUME_LIGHT_EXACT
-        perSigmaS += inScatter * exactFogTransmittance(i, shadow, p, ls.toLight, ls.distance) * lightMapVisibility(i, p);
+        perSigmaS += inScatter * exactFogTransmittance(i, shadow, corners, p, ls.toLight, ls.distance) *
+                     lightMapVisibility(i, p, sun);
 #else
         bool trusted;
-        perSigmaS += inScatter * trustedFogTransmittance(i, shadow, trusted) * lightMapVisibility(i, p);
+        perSigmaS += inScatter * trustedFogTransmittance(i, shadow, corners, trusted) * lightMapVisibility(i, p, sun);
         exact = exact || !trusted;
 #endif
     }

@@ -145,7 +145,7 @@ TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
             // Variants built with -D defines (shaders/CMakeLists.txt) share their source's bindings.
             for (const VariantKey& k : variants) {
                 std::string n = variantShaderName(p.shader, p.variant, k);
-                for (const char* e : {"_fp16", "_fp8", "_novdb", "_nosun", "_nolocal"})
+                for (const char* e : {"_fp16", "_fp8"})
                     if (auto at = n.find(e); at != std::string::npos) n.erase(at, std::string(e).size());
                 sources.insert(n);
             }
@@ -171,17 +171,14 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, {true, true, VdbEncoding::Fp8}),
               "shadow_volume_vdb_fp8.comp");
     EXPECT_EQ(variantShaderName("light", Variant::None, {true, true, VdbEncoding::Fp8}), "light.comp");
-    EXPECT_EQ(variantShaderName("light", Variant::Light, {}), "light.comp");
-    VariantKey bare;
-    bare.vdbShadows = bare.sunShadowMap = bare.localShadowMaps = false;
-    EXPECT_EQ(variantShaderName("light_exact", Variant::Light, bare), "light_exact_novdb_nosun_nolocal.comp");
+    // The light passes' lookups are compiled out by specialization constants, not variants.
+    EXPECT_EQ(variantShaderName("light", Variant::Shapes, {}), "light.comp");
     // The sampled fog shadows of ellipsoids and cylinders (shaders/CMakeLists.txt BRUME_SHAPES_SHADERS).
     VariantKey shaped;
     shaped.shapes = true;
     EXPECT_EQ(variantShaderName("distant_fog", Variant::Shapes, shaped), "distant_fog_shapes.comp");
     EXPECT_EQ(variantShaderName("distant_fog", Variant::Shapes, {}), "distant_fog.comp");
-    bare.shapes = true;
-    EXPECT_EQ(variantShaderName("light_exact", Variant::Light, bare), "light_exact_novdb_nosun_nolocal_shapes.comp");
+    EXPECT_EQ(variantShaderName("light_exact", Variant::Shapes, shaped), "light_exact_shapes.comp");
     VariantKey vdbShaped = shaped;
     vdbShaped.vdb = true;
     vdbShaped.encoding = VdbEncoding::Fp16;

@@ -60,10 +60,10 @@ BRUME_FUNC float lightGlowRadius(LightData l, FrameUniforms f) {
 // else the inverse square evaluated no closer than `nearest` (lighting.h FROXEL_LIGHT_CLAMP).
 BRUME_FUNC LightSample evalLightFroxel(LightData l, vec3 p, float nearest, FrameUniforms f) {
     float glow = lightGlowRadius(l, f);
-    if (glow <= 0.0f) return evalLightNear(l, p, nearest);
-    LightSample s = evalLightNear(l, p, LIGHT_MIN_DISTANCE);
+    // One evalLightNear with the clamp chosen (lavapipe runs both sides of a branch: two calls cost two).
+    LightSample s = evalLightNear(l, p, glow > 0.0f ? LIGHT_MIN_DISTANCE : nearest);
     float u2 = (s.distance * s.distance) / (glow * glow);
-    if (u2 < 1.0f) s.irradiance *= u2 * (2.0f - u2);  // 1 - h
+    if (glow > 0.0f && u2 < 1.0f) s.irradiance *= u2 * (2.0f - u2);  // 1 - h
     return s;
 }
 

@@ -12,19 +12,38 @@ BRUME_CONST float PHASE_G_LIMIT = 0.999f;
 // infinity at the light's position.
 BRUME_CONST float LIGHT_MIN_DISTANCE = 0.01f;
 
+// The parts of hgPhase that depend on g only, computed once per froxel for all its lights.
+struct HgPhaseTerms {
+    float numerator;  // (1 - g^2) / (4 pi)
+    float base;       // (1 - g)^2 for g >= 0, (1 + g)^2 for g < 0
+    float slope;      // 2 g for g >= 0, -2 g for g < 0
+    float sign;       // -1 for g >= 0 (1 - cos), +1 for g < 0 (1 + cos)
+};
+
+BRUME_FUNC HgPhaseTerms hgPhaseTerms(float g) {
+    float gc = clamp(g, -PHASE_G_LIMIT, PHASE_G_LIMIT);
+    HgPhaseTerms t;
+    t.numerator = BRUME_INV_4PI * (1.0f - gc * gc);
+    t.base = gc >= 0.0f ? (1.0f - gc) * (1.0f - gc) : (1.0f + gc) * (1.0f + gc);
+    t.slope = gc >= 0.0f ? 2.0f * gc : -2.0f * gc;
+    t.sign = gc >= 0.0f ? -1.0f : 1.0f;
+    return t;
+}
+
+// Henyey-Greenstein phase function [1/sr] from hgPhaseTerms(g) (see hgPhase).
+BRUME_FUNC float hgPhaseOf(HgPhaseTerms t, float cosTheta) {
+    // 1 + g^2 - 2 g cos, written as (1 - g)^2 + 2 g (1 - cos) for g >= 0 and (1 + g)^2 - 2 g (1 + cos)
+    // for g < 0: both terms are then non-negative, so there is no cancellation at the peak, where the
+    // naive form loses ~25% of its value in float at |g| = 0.999. (sign * cos is exact, so
+    // 1 + sign * cos rounds as 1 - cos or 1 + cos.)
+    float denom = max(t.base + t.slope * (1.0f + t.sign * cosTheta), 1.0e-12f);
+    return t.numerator / (denom * sqrt(denom));
+}
+
 // Henyey-Greenstein phase function [1/sr]. cosTheta is the cosine between the direction the light
 // travels and the direction it is scattered into; g > 0 scatters forward. Integrates to 1 over the
 // sphere.
-BRUME_FUNC float hgPhase(float g, float cosTheta) {
-    float gc = clamp(g, -PHASE_G_LIMIT, PHASE_G_LIMIT);
-    // 1 + g^2 - 2 g cos, written as (1 - g)^2 + 2 g (1 - cos) for g >= 0 and (1 + g)^2 - 2 g (1 + cos)
-    // for g < 0: both terms are then non-negative, so there is no cancellation at the peak, where the
-    // naive form loses ~25% of its value in float at |g| = 0.999.
-    float denom = gc >= 0.0f ? (1.0f - gc) * (1.0f - gc) + 2.0f * gc * (1.0f - cosTheta)
-                             : (1.0f + gc) * (1.0f + gc) - 2.0f * gc * (1.0f + cosTheta);
-    denom = max(denom, 1.0e-12f);
-    return BRUME_INV_4PI * (1.0f - gc * gc) / (denom * sqrt(denom));
-}
+BRUME_FUNC float hgPhase(float g, float cosTheta) { return hgPhaseOf(hgPhaseTerms(g), cosTheta); }
 
 // Smooth range window: 1 at the light, 0 at `range` and beyond, (1 - (r/range)^4)^2.
 BRUME_FUNC float rangeWindow(float dist, float range) {
@@ -81,10 +100,14 @@ BRUME_FUNC LightSample evalLight(LightData l, vec3 p) { return evalLightNear(l, 
 
 // Radiance scattered toward the viewer at p by one light, per unit sigma_s (multiply by sigma_s and
 // the visibility). viewDir is the unit direction from the camera to p.
-BRUME_FUNC vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, float g) {
+BRUME_FUNC vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, HgPhaseTerms phase) {
     // The light travels along -toLight; scattered light leaves toward the camera, along -viewDir.
     float cosTheta = dot(-s.toLight, -viewDir);
-    return s.irradiance * (hgPhase(g, cosTheta) * l.fogScale);
+    return s.irradiance * (hgPhaseOf(phase, cosTheta) * l.fogScale);
+}
+
+BRUME_FUNC vec3 inScatterPerSigmaS(LightData l, LightSample s, vec3 viewDir, float g) {
+    return inScatterPerSigmaS(l, s, viewDir, hgPhaseTerms(g));
 }
 
 // Lambertian surface: radiance = albedo / pi * irradiance * cos.
