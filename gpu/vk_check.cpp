@@ -53,13 +53,17 @@ namespace {
 struct Injection {
     std::atomic<uint64_t> failAt{0};  // 0: never
     std::atomic<uint64_t> calls{0};
-    std::atomic<bool> sticky{false};  // dead@N: every call from the Nth on fails ...
-    std::atomic<bool> dead{false};    // ... until a device is created (deviceCreated)
+    std::atomic<bool> sticky{false};  // dead@N, acquire@N, present@N: the device stays lost
 };
-Injection g_injections[2];
+Injection g_injections[4];  // by FaultSite
+// A lost device of a sticky fault: every submission, acquisition and presentation fails until a
+// device is created (deviceCreated) ...
+std::atomic<bool> g_dead{false};
+// ... or, for gone@N, on every device from then on (the GPU is gone).
+std::atomic<bool> g_gone{false};
 std::once_flag g_fromEnvironment;
 
-// BRUME_GPU_FAULT=oom@N | lost@N | dead@N, read once.
+// BRUME_GPU_FAULT=oom@N | lost@N | dead@N | gone@N | acquire@N | present@N, read once.
 void readEnvironment() {
     const char* v = std::getenv("BRUME_GPU_FAULT");
     if (!v) return;
@@ -69,31 +73,38 @@ void readEnvironment() {
     const unsigned long long n = std::strtoull(at + 1, &end, 10);
     if (end == at + 1 || *end != '\0') return;
     const std::string kind(v, at);
-    if (kind == "oom") g_injections[int(FaultSite::Allocate)].failAt = n;
-    if (kind == "lost" || kind == "dead") g_injections[int(FaultSite::Submit)].failAt = n;
-    g_injections[int(FaultSite::Submit)].sticky = kind == "dead";
+    FaultSite site = FaultSite::Submit;
+    if (kind == "oom") site = FaultSite::Allocate;
+    else if (kind == "acquire") site = FaultSite::Acquire;
+    else if (kind == "present") site = FaultSite::Present;
+    else if (kind != "lost" && kind != "dead" && kind != "gone") return;
+    g_injections[int(site)].failAt = n;
+    g_injections[int(site)].sticky = kind != "oom" && kind != "lost";
+    if (kind == "gone") g_gone = true;  // armed: takes effect at the Nth submission
 }
 
 }  // namespace
 
 void setFaultInjection(FaultSite site, uint64_t n) {
     std::call_once(g_fromEnvironment, readEnvironment);
-    for (Injection& i : g_injections) i.calls = 0, i.sticky = false, i.dead = false;
+    for (Injection& i : g_injections) i.calls = 0, i.sticky = false;
+    g_dead = false;
+    g_gone = false;
     g_injections[int(site)].failAt = n;
 }
 
 void deviceCreated() {
     std::call_once(g_fromEnvironment, readEnvironment);
-    g_injections[int(FaultSite::Submit)].dead = false;
+    if (!g_gone) g_dead = false;
 }
 
 VkResult injectedFault(FaultSite site) {
     std::call_once(g_fromEnvironment, readEnvironment);
     Injection& i = g_injections[int(site)];
     const uint64_t call = ++i.calls;
-    if (i.dead) return VK_ERROR_DEVICE_LOST;
+    if (site != FaultSite::Allocate && g_dead) return VK_ERROR_DEVICE_LOST;
     if (i.failAt == 0 || call != i.failAt) return VK_SUCCESS;
-    if (i.sticky) i.dead = true;
+    if (i.sticky) g_dead = true;
     return site == FaultSite::Allocate ? VK_ERROR_OUT_OF_DEVICE_MEMORY : VK_ERROR_DEVICE_LOST;
 }
 

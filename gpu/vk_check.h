@@ -33,11 +33,16 @@ bool isDeviceLost(const Error& e);
 // BRUME_GPU_FAULT=oom@N makes the Nth GPU memory allocation of the process fail with
 // VK_ERROR_OUT_OF_DEVICE_MEMORY, and lost@N the Nth frame submission fail with VK_ERROR_DEVICE_LOST
 // (the frame is not submitted); N counts from 1, and a bad value is ignored. dead@N stands for a
-// real device loss: the Nth submission and every one after it fail, until a device is created
-// again (deviceCreated). setFaultInjection does the same in-process (n = 0: none) and restarts the counts.
-enum class FaultSite { Allocate, Submit };
+// real device loss: the Nth submission and every submission, window image acquisition and
+// presentation after it fail, until a device is created again (deviceCreated). acquire@N and
+// present@N do the same from the editor window's Nth image acquisition or presentation (the image
+// is not acquired or presented). gone@N is dead@N on every device created after it too (a GPU that
+// fell off the bus). setFaultInjection does the same in-process (n = 0: none, never sticky) and
+// restarts the counts.
+enum class FaultSite { Allocate, Submit, Acquire, Present };
 void setFaultInjection(FaultSite site, uint64_t n);
-// Called by Device::create: a lost device of dead@N is replaced, and submissions succeed again.
+// Called by Device::create: a lost device of dead@N (acquire@N, present@N) is replaced, and calls
+// succeed again.
 void deviceCreated();
 // VK_SUCCESS, or the injected failure when this call is the chosen one (counts every call).
 VkResult injectedFault(FaultSite site);

@@ -283,6 +283,54 @@ TEST(EditorFaults, AGpuFaultFallsBackToTheLowerPresetAndTheSessionGoesOn) {
     }
 }
 
+// The device lost on the window's side (app/editor/presenter.cpp): at the 3rd window image
+// acquisition (acquire@3) or presentation (present@3), and from then on until a device is created.
+// The editor prints the sentence, recreates the device and the window's presenter, keeps the
+// quality (the renderer did not fail), and the last frame shows the scene (validation layer on and
+// silent). gone@1 loses every device at its first submission: after 3 recreations the editor stops
+// with one sentence and exit 1, never a crash.
+TEST(EditorFaults, ADeviceLostWhilePresentingIsRecreatedOrEndsWithOneSentence) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (apt-get install xvfb xauth): windowed editor tests skipped";
+    test::TempDir tmp("editor_crash", "present_faults");
+    fs::copy_file(kDefaultScene, tmp.path / "scene.json");
+    struct Case {
+        std::string fault, sentence;
+    };
+    for (const Case& c : {Case{"acquire@3", "Vulkan could not get the next window image: the GPU stopped responding"},
+                          Case{"present@3", "Vulkan could not show the window frame: the GPU stopped responding"},
+                          Case{"gone@1", "Vulkan could not submit"}}) {
+        const fs::path shot = tmp.path / "shot.png", log = tmp.path / "log.txt";
+        fs::remove(shot);
+        const std::string cmd = "BRUME_GPU_FAULT=" + c.fault + " XDG_CONFIG_HOME=" + quoted((tmp.path / "config").string()) +
+                                " XDG_STATE_HOME=" + quoted((tmp.path / "state").string()) + " " + kXvfb +
+                                BRUME_EDITOR_EXE + " " + quoted((tmp.path / "scene.json").string()) +
+                                " --width 160 --height 90 --quality medium --validation --hide-ui --frames 5 --screenshot " +
+                                quoted(shot.string()) + " > " + quoted(log.string()) + " 2>&1";
+        const int status = std::system(cmd.c_str());
+        const std::string text = readText(log);
+        ASSERT_TRUE(WIFEXITED(status)) << c.fault << ": the editor did not exit: " << text;
+        EXPECT_NE(text.find(c.sentence), std::string::npos) << c.fault << ": " << text;
+        EXPECT_EQ(text.find("validation:"), std::string::npos) << c.fault << ": " << text;
+        if (c.fault == "gone@1") {
+            EXPECT_EQ(WEXITSTATUS(status), 1) << text;
+            const std::string last = "error: The GPU device was lost 4 times; brume-editor stops";
+            EXPECT_NE(text.find(last), std::string::npos) << text;
+            EXPECT_EQ(text.substr(text.find(last)).find('\n'), text.size() - text.find(last) - 1)
+                << "the last sentence is not the last line: " << text;
+            EXPECT_FALSE(fs::exists(shot));
+            continue;
+        }
+        EXPECT_EQ(WEXITSTATUS(status), 0) << c.fault << ": " << text;
+        EXPECT_NE(text.find("The GPU device was lost: brume-editor recreated it."), std::string::npos) << text;
+        EXPECT_EQ(text.find("falls back"), std::string::npos) << c.fault << ": the renderer did not fail: " << text;
+        Result<Image> img = readPngLinear(shot.string());
+        ASSERT_TRUE(img.ok()) << c.fault << ": " << (img.ok() ? "" : img.error().message) << "\n" << text;
+        float lo = 1e30f, hi = 0.0f;
+        for (const glm::vec3& p : img.value().pixels) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+        EXPECT_GT(hi - lo, 0.01f) << c.fault << ": the viewport is empty: " << text;
+    }
+}
+
 // The windowed editor on mutated scenes (tests/hostile_scenes.h): started on a file `brume validate`
 // refuses, it prints one `error:` line and exits 2, as the command line does; on a mutant the
 // command line accepts, it renders and exits 0 (2 of each) (validation layer on and silent). Never a crash.

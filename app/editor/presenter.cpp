@@ -513,7 +513,10 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
     };
     uint32_t index = 0;
     const VkSemaphore acquired = s.acquired.get(), rendered = s.rendered.get();
-    VkResult r = vkAcquireNextImageKHR(device, s.swapchain.get(), UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
+    // A lost device here (or at the present below) is an Error that isDeviceLost: the editor's loop
+    // recreates the device and this presenter (app/editor/main.cpp). Tests inject it (vk_check.h).
+    VkResult r = gpu::injectedFault(gpu::FaultSite::Acquire);
+    if (r == VK_SUCCESS) r = vkAcquireNextImageKHR(device, s.swapchain.get(), UINT64_MAX, acquired, VK_NULL_HANDLE, &index);
     if (r == VK_ERROR_OUT_OF_DATE_KHR) {
         BRUME_VK(vkDeviceWaitIdle(device), "wait for the window before resizing");
         return s.createSwapchain();  // the next frame draws
@@ -553,7 +556,8 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
     const VkSwapchainKHR swapchain = s.swapchain.get();
     present.pSwapchains = &swapchain;
     present.pImageIndices = &index;
-    r = vkQueuePresentKHR(s.device.queue(), &present);
+    r = gpu::injectedFault(gpu::FaultSite::Present);
+    if (r == VK_SUCCESS) r = vkQueuePresentKHR(s.device.queue(), &present);
     if (r != VK_SUBOPTIMAL_KHR && r != VK_ERROR_OUT_OF_DATE_KHR) BRUME_VK(r, "show the window frame");
     part("queue present");
     if (gImGuiResult != VK_SUCCESS) return gpu::vkError("draw the UI", std::exchange(gImGuiResult, VK_SUCCESS));
