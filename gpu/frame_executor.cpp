@@ -124,8 +124,60 @@ Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bo
     return ensureBuffer(res[id], size, usage, memory, d.name, dirty);
 }
 
+namespace {
+
+// About the bytes a set of sized resources holds, in units of 16 B: 10 froxel volumes and about 4
+// screen images (frame_resources.h).
+int64_t sizedWeight(glm::ivec3 dims, glm::ivec2 size) {
+    return 10 * int64_t(dims.x) * dims.y * dims.z + 4 * int64_t(size.x) * size.y;
+}
+
+// The members of FrameResources whose size follows the froxel grid or the image (with the history's
+// bookkeeping, which belongs to its images). The buffers only grow and stay where they are.
+void swapSizedResources(FrameResources& a, FrameResources& b) {
+    std::swap(a.images, b.images);
+    std::swap(a.history, b.history);
+    std::swap(a.historyUndefined, b.historyUndefined);
+    std::swap(a.historyWritten, b.historyWritten);
+    std::swap(a.froxelDims, b.froxelDims);
+    std::swap(a.size, b.size);
+    std::swap(a.outputReadback, b.outputReadback);
+}
+
+void releaseSizedResources(FrameResources& r) {
+    FrameResources empty;
+    swapSizedResources(r, empty);  // empty's destructor frees them
+}
+
+}  // namespace
+
+// Called before the ensure* below; the parked set is the largest one seen lately. Back at its sizes:
+// swap the sets, no allocation. Going smaller than the current set while it is the largest: park it
+// (the one given back is reallocated by ensure*). Going at least as large as the parked set: free
+// it first, nothing will come back to it. Peak memory stays the largest set plus the current one.
+// A swapped-in set's history is not read across the swap: the dims are part of the temporal scene
+// key (core/temporal.h), so the frame after a size change restarts its history.
+Result<void> GpuRenderer::State::parkSizedResources(glm::ivec3 dims, glm::ivec2 size, bool& dirty) {
+    if (res.froxelDims == dims && res.size == size) return {};
+    if (parked.froxelDims == dims && parked.size == size) {
+        swapSizedResources(res, parked);
+        dirty = true;
+        if (Result<void> a = geometry.attach(*device, res); !a) {
+            res.size = glm::ivec2(0);  // ensureScreenImages reallocates and attaches again
+            return a.error();
+        }
+        return {};
+    }
+    const int64_t now = sizedWeight(dims, size), current = sizedWeight(res.froxelDims, res.size),
+                  kept = sizedWeight(parked.froxelDims, parked.size);
+    if (now < current && current >= kept) swapSizedResources(res, parked);
+    else if (now >= kept) releaseSizedResources(parked);
+    return {};
+}
+
 Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool& dirty) {
     if (res.froxelDims == dims) return {};
+    allocated = true;
     res.froxelDims = glm::ivec3(0);
     for (const ImageDecl& d : kImages) {
         if (d.shape != ImageShape::image3D) continue;
@@ -154,6 +206,7 @@ Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool& dirty
 
 Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty) {
     if (res.size == size) return {};
+    allocated = true;
     const VkExtent3D e{static_cast<uint32_t>(size.x), static_cast<uint32_t>(size.y), 1};
     res.size = glm::ivec2(0);
     for (const ImageDecl& d : kImages) {
@@ -200,6 +253,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                                          size_t localShadowBytes) {
     bool dirty = descriptorsStale;
     descriptorsStale = true;  // until the descriptors below are written
+    allocated = false;
     BRUME_TRY(ensureBuffer(BufferId::frame, sizeof(shd::FrameUniforms), dirty));
     BRUME_TRY(ensureBuffer(BufferId::previousFrame, sizeof(shd::FrameUniforms), dirty));
     BRUME_TRY(ensureBuffer(BufferId::counters, sizeof(shd::FroxelCounters), dirty));
@@ -213,7 +267,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     bool vertexDirty = false;
     BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                            Memory::Upload, "geometry vertices", vertexDirty));
-    BRUME_TRY(ensureFroxelImages(dims, dirty));
+    BRUME_TRY(parkSizedResources(dims, size, dirty));
+    if (Result<void> f = ensureFroxelImages(dims, dirty); !f) {
+        if (parked.froxelDims == glm::ivec3(0)) return f.error();
+        releaseSizedResources(parked);  // out of memory with a set parked: give it back, try once more
+        BRUME_TRY(ensureFroxelImages(dims, dirty));
+    }
     // Room for every froxel: the exact light pass's list (bindings.h ExactListHeader).
     BRUME_TRY(ensureBuffer(BufferId::exactList,
                            sizeof(shd::ExactListHeader) + static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) *

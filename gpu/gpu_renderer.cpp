@@ -296,6 +296,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const int64_t dispatched = lightFroxels.froxels();
     out.skippedFroxels = counters->skippedFroxels + size_t(int64_t(dims.x) * dims.y * dims.z - dispatched);
     out.overfullClusters = clusters.overfullClusters;
+    out.allocated = s_->allocated;
     Result<std::vector<PassTiming>> timings = s_->timer.read();
     if (!timings) return timings.error();
     out.passes = std::move(timings.value());

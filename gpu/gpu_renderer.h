@@ -25,6 +25,9 @@ struct GpuRender {
     size_t litFroxels = 0;           // froxels with sigma_t > 0
     size_t skippedFroxels = 0;       // froxels with sigma_t = 0 (lighting skipped)
     size_t overfullClusters = 0;     // light clusters over shd::CLUSTER_MAX_LIGHTS (unculled there)
+    // This call allocated froxel volumes or screen images (a first render, or a size seen neither
+    // last nor parked: gpu/renderer_state.h); fresh memory costs its first touch in the passes.
+    bool allocated = false;
 };
 
 // The last frame's output image on the device (after renderOnDevice): rgba32f, in

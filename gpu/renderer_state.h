@@ -39,12 +39,19 @@ struct GpuRenderer::State {
     TemporalState temporalState;  // history bookkeeping, shared with the CPU (core/temporal.h)
     PassTimer timer;
     FrameResources res;
+    // The editor interleaves small coarse frames (while the user drags) with full-size ones (at rest):
+    // the larger set of sized resources is kept here while a smaller one is in use, so that coming
+    // back to rest reuses memory the device has already touched instead of allocating and faulting in
+    // hundreds of MiB (parkSizedResources). Only its sized members are used (swapSizedResources).
+    FrameResources parked;
+    bool allocated = false;  // this render's prepare allocated sized resources (GpuRender::allocated)
 
     Result<void> createCommands();
     Result<void> createPasses();
     Result<void> ensureBuffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
                               const char* name, bool& dirty);
     Result<void> ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty);
+    Result<void> parkSizedResources(glm::ivec3 dims, glm::ivec2 size, bool& dirty);
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);

@@ -419,6 +419,66 @@ TEST_F(GpuTest, ResizingBetweenRendersKeepsResultsCorrect) {
     EXPECT_LT(relativeMeanAbsError(gpu.value().image, renderFroxelCpu(s, other).image), kTolerance);
 }
 
+// The editor's pattern: a full-size frame at rest, smaller coarse frames while a volume is dragged,
+// then the full size again. The full-size resources are parked, not freed, while the coarse ones are
+// in use (gpu/renderer_state.h): coming back allocates nothing and renders exactly what a fresh
+// renderer renders (nothing stale from the parked set or from the coarse frames leaks into it).
+TEST_F(GpuTest, BackAtAParkedSizeAllocatesNothingAndRendersAsAFreshRenderer) {
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
+    s.geometry = ground();
+    RenderRequest rest = smallRequest();
+    rest.width = 96;
+    rest.height = 54;
+    rest.quality = Quality::High;
+    RenderRequest coarse = rest;
+    coarse.quality = Quality::Low;
+    coarse.width = 32;
+    coarse.height = 18;
+    RenderRequest coarser = coarse;
+    coarser.width = 24;
+    coarser.height = 14;
+    Scene moved = s;
+    moved.volumes[0].transform.translation.x += 0.7f;
+
+    auto first = renderer->render(s, rest);
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    EXPECT_TRUE(first.value().allocated);
+    for (const RenderRequest& r : {coarse, coarser}) {
+        auto c = renderer->render(moved, r);
+        ASSERT_TRUE(c.ok()) << c.error().message;
+        EXPECT_TRUE(c.value().allocated) << r.width;
+    }
+    auto back = renderer->render(s, rest);
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    EXPECT_FALSE(back.value().allocated) << "the full-size set should have been parked";
+
+    gpu::GpuOptions options;
+    options.validation = true;
+    auto fresh = gpu::GpuRenderer::create(options);
+    ASSERT_TRUE(fresh.ok()) << fresh.error().message;
+    auto expected = fresh.value()->render(s, rest);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    ASSERT_EQ(back.value().image.pixels.size(), expected.value().image.pixels.size());
+    EXPECT_EQ(relativeMeanAbsError(back.value().image, expected.value().image), 0.0);
+    EXPECT_TRUE(fresh.value()->validationMessages().empty());
+
+    // A size larger than the parked one frees it; the previous full size is then allocated anew.
+    RenderRequest larger = rest;
+    larger.width = 128;
+    larger.height = 72;
+    auto big = renderer->render(s, larger);
+    ASSERT_TRUE(big.ok()) << big.error().message;
+    EXPECT_TRUE(big.value().allocated);
+    auto again = renderer->render(s, coarse);
+    ASSERT_TRUE(again.ok()) << again.error().message;
+    EXPECT_TRUE(again.value().allocated);
+    auto bigAgain = renderer->render(s, larger);
+    ASSERT_TRUE(bigAgain.ok()) << bigAgain.error().message;
+    EXPECT_FALSE(bigAgain.value().allocated);
+}
+
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {
     GpuOptions options;
     options.device = "no such gpu 1234";
