@@ -62,15 +62,20 @@ const SunShadowMap& SunShadowCache::get(const CompiledScene& cs, const std::vect
     if (frame.sunShadowLight > 0)
         fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.sunShadowLight - 1)], resolution);
     const bool mapped = frame.sunShadowLight > 0;
-    const bool same = valid_ && geometry == geometry_ && mapped == !map_.depth.empty() &&
-                      (!mapped || std::memcmp(&fit, &map_.fit, sizeof(fit)) == 0);
-    if (!same) {
-        map_ = buildSunShadowMap(cs, GeometrySet(geometry), frame, resolution, threads);
-        geometry_ = geometry;
-        valid_ = true;
-        ++builds_;
+    auto same = [&](const Entry& e) {
+        return e.valid && e.geometry == geometry && mapped == !e.map.depth.empty() &&
+               (!mapped || std::memcmp(&fit, &e.map.fit, sizeof(fit)) == 0);
+    };
+    if (!same(entries_[0])) {
+        std::swap(entries_[0], entries_[1]);  // the older entry moves to the front: reused or rebuilt
+        if (!same(entries_[0])) {
+            entries_[0].map = buildSunShadowMap(cs, GeometrySet(geometry), frame, resolution, threads);
+            entries_[0].geometry = geometry;
+            entries_[0].valid = true;
+            ++builds_;
+        }
     }
-    return map_;
+    return entries_[0].map;
 }
 
 namespace {

@@ -3,6 +3,7 @@
 // renderer samples it directly; the GPU renderer uploads the same map, so both see the same bits.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "compile.h"
@@ -29,9 +30,11 @@ void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs);
 SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
                                int resolution, int threads);
 
-// The last map built, rebuilt only when the geometry or the fit (camera, froxel range, light
-// direction, resolution) changes: the GPU renderer keeps one, so that edits of fog and lights in
-// the editor do not pay for the host ray cast again.
+// The last two maps built, each kept while its geometry and fit (camera, froxel range, light
+// direction, resolution) do not change; a request that matches neither rebuilds the older one. The
+// GPU renderer keeps one cache, so that edits of fog and lights in the editor do not pay for the
+// host ray cast again, and the editor's coarse frames while dragging (a lower resolution) do not
+// evict the map of its full-quality frames at rest.
 class SunShadowCache {
 public:
     const SunShadowMap& get(const CompiledScene& cs, const std::vector<Geometry>& geometry,
@@ -39,9 +42,12 @@ public:
     int builds() const { return builds_; }
 
 private:
-    SunShadowMap map_;
-    std::vector<Geometry> geometry_;
-    bool valid_ = false;
+    struct Entry {
+        SunShadowMap map;
+        std::vector<Geometry> geometry;
+        bool valid = false;
+    };
+    std::array<Entry, 2> entries_;  // [0]: the one used last
     int builds_ = 0;
 };
 

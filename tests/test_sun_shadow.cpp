@@ -142,6 +142,22 @@ TEST(SunShadowMap, CacheRebuildsExactlyWhenGeometryOrFitChange) {
     EXPECT_EQ(cache.builds(), 3);
     cache.get(cs, s.geometry, frameOf(s), n * 2, 2);
     EXPECT_EQ(cache.builds(), 4);
+    // Two maps are kept: going back and forth between two resolutions (the editor's coarse frames
+    // and its frames at rest) builds each once, and each returned map equals a fresh build.
+    for (int k = 0; k < 3; ++k) {
+        for (const int res : {n, n * 2}) {
+            const SunShadowMap& m = cache.get(cs, s.geometry, frameOf(s), res, 2);
+            EXPECT_EQ(m.depth, buildSunShadowMap(cs, GeometrySet(s.geometry), frameOf(s), res, 2).depth) << res;
+        }
+    }
+    EXPECT_EQ(cache.builds(), 4);
+    // A third input evicts the older one.
+    cache.get(cs, s.geometry, frameOf(s), n / 2, 2);
+    EXPECT_EQ(cache.builds(), 5);
+    cache.get(cs, s.geometry, frameOf(s), n * 2, 2);
+    EXPECT_EQ(cache.builds(), 5);
+    cache.get(cs, s.geometry, frameOf(s), n, 2);
+    EXPECT_EQ(cache.builds(), 6);
 }
 
 // The CPU froxel renderer keeps the map across the frames of a temporal sequence (the jitter does
