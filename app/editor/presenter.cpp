@@ -98,8 +98,8 @@ struct Presenter::State {
     Result<void> ensureSourceDisplay(glm::ivec2 size);
     Result<void> ensureBuffer(gpu::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, gpu::Memory memory,
                               const char* name);
-    void record(uint32_t image, const gpu::OutputImage& source, glm::ivec2 viewSize, uint64_t generation, ImDrawData* ui,
-                bool capture);
+    void record(uint32_t image, const gpu::OutputImage& source, PresentPath path, glm::ivec2 viewSize,
+                uint64_t generation, ImDrawData* ui, bool capture);
 };
 
 Result<void> Presenter::State::chooseFormat() {
@@ -384,15 +384,14 @@ VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayo
 // any render) -> window image (transfer), or for a coarse frame (PresentPath::Upscale) the output ->
 // display bytes at its own size -> small image -> linear blit into the window image; then ImGui
 // over it (render pass), and for a capture, window image -> readback buffer.
-void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, glm::ivec2 viewSize, uint64_t generation,
-                              ImDrawData* ui, bool capture) {
+void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, PresentPath path, glm::ivec2 viewSize,
+                              uint64_t generation, ImDrawData* ui, bool capture) {
     const VkImage image = images[index];
     VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkBeginCommandBuffer(cmd, &begin);
     timer.reset(cmd);
     timer.begin(cmd, "display");
-    const PresentPath path = choosePresentPath(source.view != VK_NULL_HANDLE, source.size, viewSize, canBlit);
     const glm::ivec2 window(static_cast<int>(extent.width), static_cast<int>(extent.height));
     // The previous frame's copies read the pixel buffers; this frame rewrites them.
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0);
@@ -527,11 +526,11 @@ Result<void> Presenter::present(const gpu::OutputImage& source, glm::ivec2 viewS
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(s.extent.width) * s.extent.height * 4;
     BRUME_TRY(s.ensureBuffer(s.windowPixels, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::Memory::DeviceLocal, "window pixels"));
-    if (source.view && choosePresentPath(true, source.size, viewSize, s.canBlit) == PresentPath::Upscale)
-        BRUME_TRY(s.ensureSourceDisplay(source.size));
+    const PresentPath path = choosePresentPath(source.view != VK_NULL_HANDLE, source.size, viewSize, s.canBlit);
+    if (path == PresentPath::Upscale) BRUME_TRY(s.ensureSourceDisplay(source.size));
     if (capture)
         BRUME_TRY(s.ensureBuffer(s.readback, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::Memory::Readback, "screenshot"));
-    s.record(index, source, viewSize, generation, ui, capture != nullptr);
+    s.record(index, source, path, viewSize, generation, ui, capture != nullptr);
     part("record");
 
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
