@@ -238,7 +238,7 @@ TEST_F(Noise, DriftingMistSceneRendersFiniteAndDrifts) {
     EXPECT_EQ(mist.activeVoxels, 32u * 32u * 32u);
     const std::string scene = quoted((assets / "scenes" / "drifting_mist.json").string());
     ASSERT_EQ(brume("validate " + scene).exitCode, 0);
-    const std::string small = " --width 96 --height 54 --quality low";
+    const std::string small = std::string(" --width 96 --height 54 --quality low") + test::defaultRendererFlag();
     const CliRun r0 = brume("render " + scene + " -o t0.exr --time 0 --frames 4 --fps 24" + small);
     ASSERT_EQ(r0.exitCode, 0) << r0.err;
     const CliRun r2 = brume("render " + scene + " -o t2.exr --time 2 --frames 4 --fps 24" + small);

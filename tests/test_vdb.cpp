@@ -15,6 +15,7 @@
 #include "core/render.h"
 #include "io/image_io.h"
 #include "io/vdb_import.h"
+#include "test_support.h"
 #include "vdb_test_util.h"
 
 using namespace brume;
@@ -408,6 +409,7 @@ TEST_F(Vdb, CliInfoAndRenderExitTwoOnACorruptFile) {
 // `brume render` draws a vdb volume on the GPU as on the CPU, without the former "does not draw
 // yet" warning (tests/test_gpu_vdb.cpp compares the two renderers' volumes closely; this is the CLI).
 TEST_F(Vdb, GpuRenderDrawsVdbVolumesLikeTheCpu) {
+    BRUME_REQUIRE_GPU_BUILD();
     BRUME_REQUIRE_SHARED_VDB();
     const std::string bytes = readBytes(real("gaffer_arnold_sphere.vdb"));
     writeBytes(dir_ / "sphere.vdb", bytes);
