@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "geometry.h"
 #include "local_shadow.h"
 #include "parallel.h"
 #include "vdb_shadow.h"
@@ -97,15 +98,71 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
     return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
 }
 
+SurfaceCorners computeSurfaceCorners(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
+                                     glm::ivec2 size, int threads) {
+    SurfaceCorners sc;
+    sc.size = size;
+    sc.dims = shd::surfaceCornerDims(size);
+    sc.lights = static_cast<int>(cs.lights.size());
+    sc.values.assign(static_cast<size_t>(sc.dims.x * sc.dims.y * (1 + sc.lights)), glm::vec4(0.0f));
+    const float cameraFar = frame.projection.w;
+    parallelFor(sc.dims.y, threads, [&](int cy) {
+        for (int cx = 0; cx < sc.dims.x; ++cx) {
+            const glm::ivec2 c(cx, cy);
+            const glm::vec2 pixel = glm::vec2(shd::surfaceCornerPixel(c, size)) + glm::vec2(0.5f);
+            const glm::vec3 viewRay = shd::viewRayFromPixel(pixel, frame);
+            const float rayPerDepth = glm::length(viewRay);
+            const glm::vec3 dir = glm::normalize(glm::vec3(frame.worldFromView * glm::vec4(viewRay, 0.0f)));
+            const SurfaceHit hit = geometry.intersect(Ray{glm::vec3(frame.cameraPosition), dir}, cameraFar * rayPerDepth);
+            if (!hit.hit()) continue;  // the sky: view depth 0
+            sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, c, sc.lights, 0))] =
+                glm::vec4(hit.t / rayPerDepth, 0.0f, 0.0f, 0.0f);
+            const glm::vec3 origin = hit.position + hit.normal * surfaceRayOffset(hit.position);
+            for (int i = 0; i < sc.lights; ++i) {
+                const shd::LightData& l = cs.lights[static_cast<size_t>(i)];
+                const shd::LightSample ls = shd::evalLight(l, hit.position);
+                sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, c, sc.lights, 1 + i))] =
+                    glm::vec4(lightFogTransmittance(cs, l, origin, ls.toLight, ls.distance, frame.localFogShadows), 0.0f);
+            }
+        }
+    });
+    return sc;
+}
+
+SurfaceCornerPixel surfaceCornerPixel(const SurfaceCorners& corners, glm::ivec2 pixel, float viewDepth) {
+    SurfaceCornerPixel px;
+    px.corners = &corners;
+    px.k = shd::surfaceCornerLookup(pixel, corners.size);
+    auto depth = [&](int cx, int cy) {
+        return corners.values[static_cast<size_t>(
+                                  shd::surfaceCornerIndex(corners.dims, glm::ivec2(cx, cy), corners.lights, 0))]
+            .x;
+    };
+    const glm::ivec4 c = px.k.corners;
+    px.covered = shd::surfaceCornersCover(depth(c.x, c.y), depth(c.z, c.y), depth(c.x, c.w), depth(c.z, c.w), px.k.weights,
+                                          viewDepth);
+    return px;
+}
+
 glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
-                                  int light, glm::vec3 p, glm::vec3 toLight, float distance) {
+                                  int light, glm::vec3 p, glm::vec3 toLight, float distance,
+                                  const SurfaceCornerPixel& px) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
     if (!shd::fogShadowsLight(l, frame.localFogShadows)) return glm::vec3(1.0f);
+    const SurfaceCorners& sc = *px.corners;
+    auto at = [&](int cx, int cy) {
+        return glm::vec3(
+            sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, glm::ivec2(cx, cy), sc.lights, 1 + light))]);
+    };
+    const glm::ivec4 c = px.k.corners;
+    const glm::vec3 t00 = at(c.x, c.y), t10 = at(c.z, c.y), t01 = at(c.x, c.w), t11 = at(c.z, c.w);
+    const bool trusted = px.covered && shd::surfaceCornersAgree(t00, t10, t01, t11);
+    const glm::vec3 analytic = trusted ? shd::surfaceCornerBlend(t00, t10, t01, t11, px.k.weights)
+                                       : lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows);
     const shd::SurfaceShadowLookup s = shd::shadowLookupAt(glm::vec3(shd::froxelCoordFromWorld(p, frame)), frame, sv.reduction);
     // The vdb layer at the clamped lookup even outside the grid's sample points (the image borders'
     // half froxel, past the froxel far): there is no exact form to fall back on.
-    const glm::vec3 vdb = vdbLayerBlend(sv, frame, light, s.k);
-    return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
+    return analytic * vdbLayerBlend(sv, frame, light, s.k);
 }
 
 }  // namespace brume
