@@ -106,6 +106,10 @@ SurfaceCorners computeSurfaceCorners(const CompiledScene& cs, const GeometrySet&
     sc.lights = static_cast<int>(cs.lights.size());
     sc.values.assign(static_cast<size_t>(sc.dims.x * sc.dims.y * (1 + sc.lights)), glm::vec4(0.0f));
     const float cameraFar = frame.projection.w;
+    const glm::vec3 cam(frame.cameraPosition);
+    // Each corner's surface point as the GPU reconstructs it from the view depth (surface.glsl
+    // surfacePointAt); w = 1 on a surface.
+    std::vector<glm::vec4> points(static_cast<size_t>(sc.dims.x * sc.dims.y), glm::vec4(0.0f));
     parallelFor(sc.dims.y, threads, [&](int cy) {
         for (int cx = 0; cx < sc.dims.x; ++cx) {
             const glm::ivec2 c(cx, cy);
@@ -115,8 +119,11 @@ SurfaceCorners computeSurfaceCorners(const CompiledScene& cs, const GeometrySet&
             const glm::vec3 dir = glm::normalize(glm::vec3(frame.worldFromView * glm::vec4(viewRay, 0.0f)));
             const SurfaceHit hit = geometry.intersect(Ray{glm::vec3(frame.cameraPosition), dir}, cameraFar * rayPerDepth);
             if (!hit.hit()) continue;  // the sky: view depth 0
+            const float viewDepth = hit.t / rayPerDepth;
             sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, c, sc.lights, 0))] =
-                glm::vec4(hit.t / rayPerDepth, 0.0f, 0.0f, 0.0f);
+                glm::vec4(viewDepth, 0.0f, 0.0f, 0.0f);
+            points[static_cast<size_t>(cy * sc.dims.x + cx)] =
+                glm::vec4(cam + glm::vec3(frame.worldFromView * glm::vec4(viewRay * viewDepth, 0.0f)), 1.0f);
             const glm::vec3 origin = hit.position + hit.normal * surfaceRayOffset(hit.position);
             for (int i = 0; i < sc.lights; ++i) {
                 const shd::LightData& l = cs.lights[static_cast<size_t>(i)];
@@ -126,7 +133,31 @@ SurfaceCorners computeSurfaceCorners(const CompiledScene& cs, const GeometrySet&
             }
         }
     });
+    // Whether each tile (by its top-left corner) may blend each light: all 4 corners are surfaces
+    // and no box-kind volume can shade it (surface_corners.comp; the .w of the light's entry).
+    parallelFor(sc.dims.y - 1, threads, [&](int cy) {
+        for (int cx = 0; cx + 1 < sc.dims.x; ++cx) {
+            auto point = [&](int x, int y) { return points[static_cast<size_t>(y * sc.dims.x + x)]; };
+            const glm::vec4 p00 = point(cx, cy), p10 = point(cx + 1, cy), p01 = point(cx, cy + 1),
+                            p11 = point(cx + 1, cy + 1);
+            if (p00.w == 0.0f || p10.w == 0.0f || p01.w == 0.0f || p11.w == 0.0f) continue;
+            const shd::SurfaceTile t =
+                shd::surfaceTileOf(glm::vec3(p00), glm::vec3(p10), glm::vec3(p01), glm::vec3(p11), cam);
+            for (int i = 0; i < sc.lights; ++i)
+                if (surfaceTileClear(cs, t, i, frame.localFogShadows))
+                    sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, glm::ivec2(cx, cy), sc.lights, 1 + i))].w =
+                        1.0f;
+        }
+    });
     return sc;
+}
+
+bool surfaceTileClear(const CompiledScene& cs, const shd::SurfaceTile& t, int light, int localLightsToo) {
+    const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
+    if (!shd::fogShadowsLight(l, localLightsToo)) return true;  // transmittance 1 everywhere
+    for (const shd::VolumeData& v : cs.volumes)
+        if (shd::surfaceTileMayMeetVolume(t, l, v)) return false;
+    return true;
 }
 
 SurfaceCornerPixel surfaceCornerPixel(const SurfaceCorners& corners, glm::ivec2 pixel, float viewDepth) {
@@ -151,12 +182,13 @@ glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& s
     if (!shd::fogShadowsLight(l, frame.localFogShadows)) return glm::vec3(1.0f);
     const SurfaceCorners& sc = *px.corners;
     auto at = [&](int cx, int cy) {
-        return glm::vec3(
-            sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, glm::ivec2(cx, cy), sc.lights, 1 + light))]);
+        return sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, glm::ivec2(cx, cy), sc.lights, 1 + light))];
     };
     const glm::ivec4 c = px.k.corners;
-    const glm::vec3 t00 = at(c.x, c.y), t10 = at(c.z, c.y), t01 = at(c.x, c.w), t11 = at(c.z, c.w);
-    const bool trusted = px.covered && shd::surfaceCornersAgree(t00, t10, t01, t11);
+    const glm::vec4 c00 = at(c.x, c.y);
+    const glm::vec3 t00(c00), t10(at(c.z, c.y)), t01(at(c.x, c.w)), t11(at(c.z, c.w));
+    // c00.w: the tile's conservative rule (no bounded volume in the way), then the corners' spread.
+    const bool trusted = px.covered && c00.w > 0.0f && shd::surfaceCornersAgree(t00, t10, t01, t11);
     const glm::vec3 analytic = trusted ? shd::surfaceCornerBlend(t00, t10, t01, t11, px.k.weights)
                                        : lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows);
     const shd::SurfaceShadowLookup s = shd::shadowLookupAt(glm::vec3(shd::froxelCoordFromWorld(p, frame)), frame, sv.reduction);

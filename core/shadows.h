@@ -58,7 +58,8 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
                                  float distance);
 
 // The surfaces' tile corners (shaders/shared/surface_corners.h): per corner, its view depth (0 =
-// sky) and each light's analytic fog transmittance at the corner pixel's surface point, in
+// sky) and each light's analytic fog transmittance at the corner pixel's surface point (w: 1 where
+// the tile the corner opens may blend that light: surfaceTileClear), in
 // shd::surfaceCornerIndex order (froxel_renderer.cpp fills it by ray casting the corner pixels; the
 // GPU's surface corners pass reads them from its G-buffer).
 struct SurfaceCorners {
@@ -67,6 +68,10 @@ struct SurfaceCorners {
     int lights = 0;
     std::vector<glm::vec4> values;
 };
+
+// Whether no box-kind volume can shade any shadow ray of tile t toward light `light`
+// (shd::surfaceTileMayMeetVolume for every volume); true for a light without fog shadows.
+bool surfaceTileClear(const CompiledScene& cs, const shd::SurfaceTile& t, int light, int localLightsToo);
 
 // One pixel's view of the corners: where it blends them, and whether it lies on their surface
 // (shd::surfaceCornersCover; the same for every light).

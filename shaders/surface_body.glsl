@@ -28,8 +28,10 @@ void appendExact(ivec2 px) {
 }
 #endif
 
-vec3 cornerTransmittance(ivec2 dims, int cx, int cy, int light) {
-    return surfaceCorners[surfaceCornerIndex(dims, ivec2(cx, cy), frame.counts.w, 1 + light)].rgb;
+// rgb: the corner's transmittance toward the light; a: 1 where the tile the corner opens may blend it
+// (no bounded volume in the way: surface_corners.comp).
+vec4 cornerTransmittance(ivec2 dims, int cx, int cy, int light) {
+    return surfaceCorners[surfaceCornerIndex(dims, ivec2(cx, cy), frame.counts.w, 1 + light)];
 }
 
 float cornerDepth(ivec2 dims, int cx, int cy) {
@@ -68,11 +70,12 @@ void main() {
         LightSample ls = evalLight(lights[i], s.worldPos);
         vec3 direct = lambert(albedo.rgb, s.normal, ls);
         if (direct == vec3(0.0f)) continue;
-        vec3 t00 = cornerTransmittance(dims, k.corners.x, k.corners.y, i);
-        vec3 t10 = cornerTransmittance(dims, k.corners.z, k.corners.y, i);
-        vec3 t01 = cornerTransmittance(dims, k.corners.x, k.corners.w, i);
-        vec3 t11 = cornerTransmittance(dims, k.corners.z, k.corners.w, i);
-        bool trusted = covered && surfaceCornersAgree(t00, t10, t01, t11);
+        vec4 c00 = cornerTransmittance(dims, k.corners.x, k.corners.y, i);
+        vec3 t00 = c00.rgb;
+        vec3 t10 = cornerTransmittance(dims, k.corners.z, k.corners.y, i).rgb;
+        vec3 t01 = cornerTransmittance(dims, k.corners.x, k.corners.w, i).rgb;
+        vec3 t11 = cornerTransmittance(dims, k.corners.z, k.corners.w, i).rgb;
+        bool trusted = covered && c00.a > 0.0f && surfaceCornersAgree(t00, t10, t01, t11);
         vec3 t = surfaceCornerBlend(t00, t10, t01, t11, k.weights);
 #ifdef BRUME_SURFACE_EXACT
         if (!trusted) t = lightFogTransmittance(lights[i], s.origin, ls.toLight, ls.distance);

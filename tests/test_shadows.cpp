@@ -305,7 +305,7 @@ namespace {
 
 struct CornerError {
     float worst = 0.0f;       // largest |blend - exact| (any channel) where the blend was taken
-    double trusted = 0.0;     // share of (surface pixel, light) pairs that took the blend
+    double trusted = 0.0;     // share of (surface pixel, light) pairs whose rule took the blend
     int cornerMismatches = 0; // corner pixels whose value is not the exact one bit for bit
 };
 
@@ -342,7 +342,16 @@ CornerError surfaceCornerError(const Scene& scene, int w, int h) {
                 e.worst = std::max(e.worst, std::max(d.x, std::max(d.y, d.z)));
                 if (atCorner && got != exact) ++e.cornerMismatches;
                 ++pairs;
-                if (got != exact) ++blended;
+                // Whether the rule took the blend (surfaceFogTransmittance's test, from the corners' records).
+                auto at = [&](int cx, int cy) {
+                    return corners.values[static_cast<size_t>(
+                        shd::surfaceCornerIndex(corners.dims, {cx, cy}, corners.lights, 1 + static_cast<int>(i)))];
+                };
+                const glm::ivec4 c = px.k.corners;
+                if (px.covered && at(c.x, c.y).w > 0.0f &&
+                    shd::surfaceCornersAgree(glm::vec3(at(c.x, c.y)), glm::vec3(at(c.z, c.y)), glm::vec3(at(c.x, c.w)),
+                                             glm::vec3(at(c.z, c.w))))
+                    ++blended;
             }
         }
     e.trusted = pairs ? static_cast<double>(blended) / static_cast<double>(pairs) : 0.0;
@@ -351,13 +360,14 @@ CornerError surfaceCornerError(const Scene& scene, int w, int h) {
 
 }  // namespace
 
-// The surfaces' fog transmittance from the tile corners (shared/surface_corners.h) at 640x360: the
-// corner pixels get the exact value bit for bit (a swapped corner or a wrong index breaks it), most
-// (pixel, light) pairs take the blend, and the blend stays within the measured error of the exact
-// closed form (docs/performance.md, "geotile"): on the default scene (a faded box with a point light
-// inside, height fog, sun) 0.035; on a box over the ground with a point light inside it 0.23, where
-// the corners of a tile miss the tip of a sharp shadow edge between them (the rule trusts what the
-// corners see; a blend across a silhouette or any shadow edge that reaches a corner exceeds these).
+// The surfaces' fog transmittance from the tile corners (shared/surface_corners.h) at 640x360 (and
+// 320x180): the corner pixels get the exact value bit for bit (a swapped corner or a wrong index
+// breaks it), the blend stays within the bound of the exact closed form, and still serves part of
+// the (pixel, light) pairs (docs/performance.md, "geo"). Where a box can shade a tile the pixel is
+// exact, so what is left is the height fog's smooth variation: toward the sun the blend lies within
+// the corners' spread (SURFACE_CORNER_SPREAD 0.02: the height fog is monotone in height), toward a
+// point light it is measured. Before the conservative rule (geotile) the box scene's error was 0.23
+// at 640x360 and 0.51 at 320x180 (the tip of a sharp shadow between a tile's corners).
 TEST(SurfaceCorners, BlendStaysCloseToTheExactTransmittance) {
     Result<Scene> loaded = loadSceneFile(std::string(BRUME_SOURCE_DIR) + "/assets/scenes/default.json");
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
@@ -366,17 +376,101 @@ TEST(SurfaceCorners, BlendStaysCloseToTheExactTransmittance) {
     point.position = {1.0f, 3.2f, 0.5f};  // inside the box
     point.intensity = 6.0f;
     box.lights.push_back(point);
+    Scene hazy = boxOverGround();  // the box's sharp shadow over height fog, a point light outside the box
+    Volume haze;
+    haze.type = VolumeType::Height;
+    haze.base_height = 0.5f;
+    haze.falloff = 1.0f;
+    haze.medium.scattering = glm::vec3(0.3f);
+    hazy.volumes.push_back(haze);
+    hazy.volumes[0].edge_fade = 0.0f;
+    hazy.volumes[0].medium.scattering = glm::vec3(5.0f);
+    Light lamp = point;
+    lamp.position = {4.0f, 1.0f, 3.0f};
+    hazy.lights.push_back(lamp);
     struct Case {
         const char* name;
         const Scene* scene;
         float bound;
+        double blended;  // at least this share of (pixel, light) pairs takes the blend
     };
-    for (const Case& c : {Case{"default", &loaded.value(), 0.04f}, Case{"box", &box, 0.25f}}) {
-        const CornerError e = surfaceCornerError(*c.scene, 640, 360);
-        std::printf("%s 640x360: worst |dT| %.5f, blended %.1f%% of (pixel, light)\n", c.name, e.worst,
-                    100.0 * e.trusted);
-        EXPECT_LE(e.worst, c.bound) << c.name;
-        EXPECT_EQ(e.cornerMismatches, 0) << c.name;
-        EXPECT_GT(e.trusted, 0.3) << c.name;  // the blend does serve most pixels
+    // Measured (640x360, 320x180): default 0.0019, 0.0054 with 48%, 43% blended (the point light
+    // inside the box never is); box 0 (a tile no box can shade has no fog at all toward the light)
+    // with 46%, 44%; hazy 0.0036, 0.0082 with 76%, 64%.
+    for (const Case& c : {Case{"default", &loaded.value(), 0.01f, 0.35}, Case{"box", &box, 0.0f, 0.35},
+                          Case{"hazy", &hazy, 0.02f, 0.5}}) {
+        for (const glm::ivec2 size : {glm::ivec2(640, 360), glm::ivec2(320, 180)}) {
+            const CornerError e = surfaceCornerError(*c.scene, size.x, size.y);
+            std::printf("%s %dx%d: worst |dT| %.5f, blended %.1f%% of (pixel, light)\n", c.name, size.x, size.y, e.worst,
+                        100.0 * e.trusted);
+            EXPECT_LE(e.worst, c.bound) << c.name << " " << size.x;
+            EXPECT_EQ(e.cornerMismatches, 0) << c.name << " " << size.x;
+            EXPECT_GT(e.trusted, c.blended) << c.name << " " << size.x;
+        }
     }
+}
+
+// The conservative rule itself (shd::surfaceTileMayMeetVolume) on random tiles, lights and volumes
+// (rotated boxes with and without fade, ellipsoids, cylinders): wherever it says a volume cannot
+// shade the tile, that volume's closed-form optical depth is exactly 0 along the shadow ray of
+// every sampled point of the tile (convex combinations of the corners, moved anywhere within the
+// margin). It must also say so often enough to be of use, and not where the rays do cross a volume.
+TEST(SurfaceCorners, ConservativeRuleNeverClearsATileThatAVolumeShades) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+    int cleared = 0, shaded = 0, tiles = 0;
+    for (int scene = 0; scene < 60; ++scene) {
+        Scene s;
+        for (int k = 0; k < 3; ++k) {
+            Volume v = boxFog({3.0f * u(rng), 1.5f + u(rng), 3.0f * u(rng)},
+                              {0.2f + 2.0f * u01(rng), 0.2f + 2.0f * u01(rng), 0.2f + 2.0f * u01(rng)},
+                              k == 0 ? 0.0f : 0.5f * u01(rng), 1.0f, 0.1f);
+            v.type = k == 0 ? VolumeType::Box : (k == 1 ? VolumeType::Ellipsoid : VolumeType::Cylinder);
+            v.transform.rotation_deg = {90.0f * u(rng), 180.0f * u(rng), 90.0f * u(rng)};
+            s.volumes.push_back(v);
+        }
+        Light sun = sunFrom({0.6f * u(rng), -1.0f, 0.6f * u(rng)});
+        Light lamp = makeLight(LightType::Point);
+        lamp.position = {3.0f * u(rng), 2.0f + 1.5f * u(rng), 3.0f * u(rng)};
+        Light spot = makeLight(LightType::Spot);
+        spot.position = {3.0f * u(rng), 3.0f + u(rng), 3.0f * u(rng)};
+        s.lights = {sun, lamp, spot};
+        const CompiledScene cs = compileScene(s);
+        const glm::vec3 cam(6.0f * u(rng), 3.0f + u(rng), 8.0f);
+        for (int tile = 0; tile < 40; ++tile) {
+            // A small patch of ground (or a slanted, slightly bent one), as 4 corners a tile apart.
+            const glm::vec3 o(4.0f * u(rng), 0.3f * u01(rng), 4.0f * u(rng));
+            const float size = 0.05f + 0.4f * u01(rng);
+            const glm::vec3 ex = glm::vec3(size, 0.1f * u(rng) * size, 0.0f);
+            const glm::vec3 ez = glm::vec3(0.2f * u(rng) * size, 0.3f * u(rng) * size, size);
+            const glm::vec3 p00 = o, p10 = o + ex, p01 = o + ez, p11 = o + ex + ez + glm::vec3(0.0f, 0.05f * u(rng) * size, 0.0f);
+            const shd::SurfaceTile t = shd::surfaceTileOf(p00, p10, p01, p11, cam);
+            ++tiles;
+            for (const shd::LightData& l : cs.lights)
+                for (const shd::VolumeData& v : cs.volumes) {
+                    const bool may = shd::surfaceTileMayMeetVolume(t, l, v);
+                    float worst = 0.0f;  // the largest density length along the sampled rays
+                    for (int n = 0; n < 64; ++n) {
+                        const float a = u01(rng), b = u01(rng);
+                        glm::vec3 p = (1.0f - b) * ((1.0f - a) * p00 + a * p10) + b * ((1.0f - a) * p01 + a * p11);
+                        if (n % 8 == 0) p = n == 0 ? p00 : (n == 8 ? p10 : (n == 16 ? p01 : p11));  // the corners too
+                        const glm::vec3 off(u(rng), u(rng), u(rng));
+                        p += 0.99f * t.margin * off / std::max(1.0f, glm::length(off));
+                        const shd::LightSample ls = shd::evalLight(l, p);
+                        worst = std::max(worst, shd::shadowDensityLength(v, p, ls.toLight, ls.distance));
+                    }
+                    if (!may) {
+                        ++cleared;
+                        EXPECT_EQ(worst, 0.0f) << "a cleared tile is shaded: scene " << scene << " tile " << tile;
+                    } else if (worst > 0.0f) {
+                        ++shaded;
+                    }
+                }
+        }
+    }
+    const int pairs = tiles * 3 * 3;
+    std::printf("%d (tile, light, volume): %d cleared, %d shaded by a sampled ray\n", pairs, cleared, shaded);
+    EXPECT_GT(cleared, pairs / 3);  // the rule is of use
+    EXPECT_GT(shaded, pairs / 20);  // and the cases where it must refuse occur
 }
