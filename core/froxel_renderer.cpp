@@ -206,8 +206,8 @@ vec3 addLightGlow(vec3 color, const CompiledScene& cs, const std::vector<int>& g
 
 // Pass 4. One image row: the first surface hit (or the sky) behind the fog.
 void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const ShadowVolume& sv, const SunShadowMap& sun,
-                  const LocalShadowMaps& local, const SurfaceCorners& corners, const FroxelVolumes& v,
-                  const DistantTable& distant, const std::vector<int>& glowLights, Image& img, int y) {
+                  const LocalShadowMaps& local, const FroxelVolumes& v, const DistantTable& distant,
+                  const std::vector<int>& glowLights, Image& img, int y) {
     const float cameraFar = v.frame.projection.w;
     for (int x = 0; x < img.width; ++x) {
         const vec2 pixel = vec2(static_cast<float>(x), static_cast<float>(y)) + vec2(0.5f);
@@ -219,11 +219,10 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
         vec3 background = cs.ambient;
         float viewDepth = cameraFar;
         if (hit.hit()) {
-            // The fog's shadow and the shadow maps' (sun, point, spot) on the surface, as the GPU's surface passes
-            // compute them; exact geometry occlusion stays off so that both renderers agree.
-            const SurfaceCornerPixel px = surfaceCornerPixel(corners, glm::ivec2(x, y), hit.t / rayPerDepth);
+            // The fog's shadow and the shadow maps' (sun, point, spot) on the surface, as the GPU's geometry pass
+            // computes them; exact geometry occlusion stays off so that both renderers agree.
             const LightTransmittanceFn fogShadow = [&](int i, vec3 from, vec3 toLight, float dist) {
-                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist, px) *
+                return surfaceFogTransmittance(cs, sv, v.frame, i, from, toLight, dist) *
                        sunShadowVisibility(sun, v.frame, i, from) *
                        localShadowVisibility(local, cs.lights[static_cast<size_t>(i)], from);
             };
@@ -310,13 +309,8 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     progress.finishedPass(columns);
 
     const DistantTable distant = buildDistantTable(cs, v.frame, threads);
-    const SurfaceCorners corners =
-        computeSurfaceCorners(cs, geometry, v.frame, glm::ivec2(request.width, request.height), threads);
     parallelFor(request.height, threads,
-                [&](int y) {
-                    compositeRow(cs, geometry, shadow, sun, local, corners, v, distant, reach.glowLights, result.image, y);
-                },
-                report);
+                [&](int y) { compositeRow(cs, geometry, shadow, sun, local, v, distant, reach.glowLights, result.image, y); }, report);
     if (request.debugView != shd::DEBUG_VIEW_FINAL)
         result.image = debugViewImage(v, request.debugView, request.debugSlice);
     return result;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "geometry.h"
 #include "local_shadow.h"
 #include "parallel.h"
 #include "vdb_shadow.h"
@@ -98,103 +97,15 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
     return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
 }
 
-SurfaceCorners computeSurfaceCorners(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
-                                     glm::ivec2 size, int threads) {
-    SurfaceCorners sc;
-    sc.size = size;
-    sc.dims = shd::surfaceCornerDims(size);
-    sc.lights = static_cast<int>(cs.lights.size());
-    sc.values.assign(static_cast<size_t>(sc.dims.x * sc.dims.y * (1 + sc.lights)), glm::vec4(0.0f));
-    const float cameraFar = frame.projection.w;
-    const glm::vec3 cam(frame.cameraPosition);
-    // Each corner's surface point as the GPU reconstructs it from the view depth (surface.glsl
-    // surfacePointAt); w = 1 on a surface.
-    std::vector<glm::vec4> points(static_cast<size_t>(sc.dims.x * sc.dims.y), glm::vec4(0.0f));
-    parallelFor(sc.dims.y, threads, [&](int cy) {
-        for (int cx = 0; cx < sc.dims.x; ++cx) {
-            const glm::ivec2 c(cx, cy);
-            const glm::vec2 pixel = glm::vec2(shd::surfaceCornerPixel(c, size)) + glm::vec2(0.5f);
-            const glm::vec3 viewRay = shd::viewRayFromPixel(pixel, frame);
-            const float rayPerDepth = glm::length(viewRay);
-            const glm::vec3 dir = glm::normalize(glm::vec3(frame.worldFromView * glm::vec4(viewRay, 0.0f)));
-            const SurfaceHit hit = geometry.intersect(Ray{glm::vec3(frame.cameraPosition), dir}, cameraFar * rayPerDepth);
-            if (!hit.hit()) continue;  // the sky: view depth 0
-            const float viewDepth = hit.t / rayPerDepth;
-            sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, c, sc.lights, 0))] =
-                glm::vec4(viewDepth, 0.0f, 0.0f, 0.0f);
-            points[static_cast<size_t>(cy * sc.dims.x + cx)] =
-                glm::vec4(cam + glm::vec3(frame.worldFromView * glm::vec4(viewRay * viewDepth, 0.0f)), 1.0f);
-            const glm::vec3 origin = hit.position + hit.normal * surfaceRayOffset(hit.position);
-            for (int i = 0; i < sc.lights; ++i) {
-                const shd::LightData& l = cs.lights[static_cast<size_t>(i)];
-                const shd::LightSample ls = shd::evalLight(l, hit.position);
-                sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, c, sc.lights, 1 + i))] =
-                    glm::vec4(lightFogTransmittance(cs, l, origin, ls.toLight, ls.distance, frame.localFogShadows), 0.0f);
-            }
-        }
-    });
-    // Whether each tile (by its top-left corner) may blend each light: all 4 corners are surfaces
-    // and no box-kind volume can shade it (surface_corners.comp; the .w of the light's entry).
-    parallelFor(sc.dims.y - 1, threads, [&](int cy) {
-        for (int cx = 0; cx + 1 < sc.dims.x; ++cx) {
-            auto point = [&](int x, int y) { return points[static_cast<size_t>(y * sc.dims.x + x)]; };
-            const glm::vec4 p00 = point(cx, cy), p10 = point(cx + 1, cy), p01 = point(cx, cy + 1),
-                            p11 = point(cx + 1, cy + 1);
-            if (p00.w == 0.0f || p10.w == 0.0f || p01.w == 0.0f || p11.w == 0.0f) continue;
-            const shd::SurfaceTile t =
-                shd::surfaceTileOf(glm::vec3(p00), glm::vec3(p10), glm::vec3(p01), glm::vec3(p11), cam);
-            for (int i = 0; i < sc.lights; ++i)
-                if (surfaceTileClear(cs, t, i, frame.localFogShadows))
-                    sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, glm::ivec2(cx, cy), sc.lights, 1 + i))].w =
-                        1.0f;
-        }
-    });
-    return sc;
-}
-
-bool surfaceTileClear(const CompiledScene& cs, const shd::SurfaceTile& t, int light, int localLightsToo) {
-    const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
-    if (!shd::fogShadowsLight(l, localLightsToo)) return true;  // transmittance 1 everywhere
-    for (const shd::VolumeData& v : cs.volumes)
-        if (shd::surfaceTileMayMeetVolume(t, l, v)) return false;
-    return true;
-}
-
-SurfaceCornerPixel surfaceCornerPixel(const SurfaceCorners& corners, glm::ivec2 pixel, float viewDepth) {
-    SurfaceCornerPixel px;
-    px.corners = &corners;
-    px.k = shd::surfaceCornerLookup(pixel, corners.size);
-    auto depth = [&](int cx, int cy) {
-        return corners.values[static_cast<size_t>(
-                                  shd::surfaceCornerIndex(corners.dims, glm::ivec2(cx, cy), corners.lights, 0))]
-            .x;
-    };
-    const glm::ivec4 c = px.k.corners;
-    px.covered = shd::surfaceCornersCover(depth(c.x, c.y), depth(c.z, c.y), depth(c.x, c.w), depth(c.z, c.w), px.k.weights,
-                                          viewDepth);
-    return px;
-}
-
 glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
-                                  int light, glm::vec3 p, glm::vec3 toLight, float distance,
-                                  const SurfaceCornerPixel& px) {
+                                  int light, glm::vec3 p, glm::vec3 toLight, float distance) {
     const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
     if (!shd::fogShadowsLight(l, frame.localFogShadows)) return glm::vec3(1.0f);
-    const SurfaceCorners& sc = *px.corners;
-    auto at = [&](int cx, int cy) {
-        return sc.values[static_cast<size_t>(shd::surfaceCornerIndex(sc.dims, glm::ivec2(cx, cy), sc.lights, 1 + light))];
-    };
-    const glm::ivec4 c = px.k.corners;
-    const glm::vec4 c00 = at(c.x, c.y);
-    const glm::vec3 t00(c00), t10(at(c.z, c.y)), t01(at(c.x, c.w)), t11(at(c.z, c.w));
-    // c00.w: the tile's conservative rule (no bounded volume in the way), then the corners' spread.
-    const bool trusted = px.covered && c00.w > 0.0f && shd::surfaceCornersAgree(t00, t10, t01, t11);
-    const glm::vec3 analytic = trusted ? shd::surfaceCornerBlend(t00, t10, t01, t11, px.k.weights)
-                                       : lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows);
     const shd::SurfaceShadowLookup s = shd::shadowLookupAt(glm::vec3(shd::froxelCoordFromWorld(p, frame)), frame, sv.reduction);
     // The vdb layer at the clamped lookup even outside the grid's sample points (the image borders'
     // half froxel, past the froxel far): there is no exact form to fall back on.
-    return analytic * vdbLayerBlend(sv, frame, light, s.k);
+    const glm::vec3 vdb = vdbLayerBlend(sv, frame, light, s.k);
+    return lightFogTransmittance(cs, l, p, toLight, distance, frame.localFogShadows) * vdb;
 }
 
 }  // namespace brume

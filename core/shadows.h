@@ -9,11 +9,8 @@
 #include "compile.h"
 #include "quality.h"
 #include "render.h"
-#include "shaders/shared/surface_corners.h"
 
 namespace brume {
-
-class GeometrySet;
 
 // Whether the froxel renderers evaluate fog transmittance toward point and spot lights at this
 // quality (FrameUniforms.localFogShadows); the sun's is always evaluated. On at every quality today (a
@@ -57,42 +54,10 @@ glm::vec3 froxelFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv
                                  int light, const shd::ShadowLookup& k, glm::vec3 p, glm::vec3 toLight,
                                  float distance);
 
-// The surfaces' tile corners (shaders/shared/surface_corners.h): per corner, its view depth (0 =
-// sky) and each light's analytic fog transmittance at the corner pixel's surface point (w: 1 where
-// the tile the corner opens may blend that light: surfaceTileClear), in
-// shd::surfaceCornerIndex order (froxel_renderer.cpp fills it by ray casting the corner pixels; the
-// GPU's surface corners pass reads them from its G-buffer).
-struct SurfaceCorners {
-    glm::ivec2 size{0};  // image [px]
-    glm::ivec2 dims{0};  // shd::surfaceCornerDims(size)
-    int lights = 0;
-    std::vector<glm::vec4> values;
-};
-
-// Whether no box-kind volume can shade any shadow ray of tile t toward light `light`
-// (shd::surfaceTileMayMeetVolume for every volume); true for a light without fog shadows.
-bool surfaceTileClear(const CompiledScene& cs, const shd::SurfaceTile& t, int light, int localLightsToo);
-
-// One pixel's view of the corners: where it blends them, and whether it lies on their surface
-// (shd::surfaceCornersCover; the same for every light).
-struct SurfaceCornerPixel {
-    const SurfaceCorners* corners = nullptr;
-    shd::SurfaceCornerLookup k{};
-    bool covered = false;
-};
-SurfaceCornerPixel surfaceCornerPixel(const SurfaceCorners& corners, glm::ivec2 pixel, float viewDepth);
-
-// The corners of an image of `size` pixels: each corner pixel's centre ray cast against the geometry
-// (the sky: view depth 0), every light's exact fog transmittance at the hit's shadow-ray origin.
-SurfaceCorners computeSurfaceCorners(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
-                                     glm::ivec2 size, int threads);
-
-// The fog's transmittance toward light `light` at a surface point p (the shadow ray's origin) of the
-// pixel `px`: the blend of its tile's corners where trusted (shd::surfaceCornersAgree), the exact
-// closed form elsewhere, as the GPU's surface passes (surface_body.glsl); times the vdb layer's
-// blend at p's froxel coordinates.
+// The same for a surface point p (the shadow ray's origin): the exact closed form everywhere (as the
+// GPU's geometry pass, where the volume's blend cost more than it saved: docs/performance.md,
+// "perfgeo"), times the vdb layer's blend at p's froxel coordinates.
 glm::vec3 surfaceFogTransmittance(const CompiledScene& cs, const ShadowVolume& sv, const shd::FrameUniforms& frame,
-                                  int light, glm::vec3 p, glm::vec3 toLight, float distance,
-                                  const SurfaceCornerPixel& px);
+                                  int light, glm::vec3 p, glm::vec3 toLight, float distance);
 
 }  // namespace brume

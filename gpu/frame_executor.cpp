@@ -7,7 +7,6 @@
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
-#include "shaders/shared/surface_corners.h"
 #include "shaders/shared/distant_table.h"
 #include "vk_check.h"
 
@@ -242,16 +241,6 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
-    // The surface passes: the tile corners' records, and room for every pixel in their exact list.
-    const glm::ivec2 surfaceCorners = shd::surfaceCornerDims(size);
-    BRUME_TRY(ensureBuffer(BufferId::surfaceCorners,
-                           static_cast<size_t>(surfaceCorners.x * surfaceCorners.y) * (1 + cs.lights.size()) *
-                               sizeof(glm::vec4),
-                           dirty));
-    BRUME_TRY(ensureBuffer(BufferId::surfaceList,
-                           sizeof(shd::ExactListHeader) +
-                               static_cast<size_t>(size.x) * static_cast<size_t>(size.y) * sizeof(uint32_t),
-                           dirty));
     if (dirty) writeDescriptorBindings(*device, bindings.set, res);
     descriptorsStale = false;
     return {};
@@ -315,14 +304,6 @@ void dispatchPass(const PassContext& ctx) {
         }
         case Dispatch::ExactFroxels:
             vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
-            break;
-        case Dispatch::SurfaceCorners: {
-            const glm::ivec2 corners = shd::surfaceCornerDims(r.size);
-            vkCmdDispatch(ctx.cmd, groups(corners.x, shd::SCREEN_GROUP_X), groups(corners.y, shd::SCREEN_GROUP_Y), 1);
-            break;
-        }
-        case Dispatch::ExactPixels:
-            vkCmdDispatchIndirect(ctx.cmd, r[BufferId::surfaceList].buffer.get(), 0);
             break;
         case Dispatch::TileCorners: {
             const glm::ivec2 corners = shd::distantTableCorners(r.size);
@@ -402,7 +383,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
             case Record::Dispatch: dispatchPass(ctx); break;
             case Record::ClearMedia: recordClearMedia(ctx); break;
             case Record::Geometry:
-                BRUME_TRY(geometry.usePipeline(*device, layout));
+                BRUME_TRY(geometry.usePipeline(*device, layout, spec, variant.shapes));
                 geometry.record(ctx);
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;

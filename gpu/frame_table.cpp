@@ -16,32 +16,17 @@ using H = HistoryId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 14> kPasses{{
+const std::array<PassDecl, 11> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
      {B::shadowTransmittance}, true, true},
-    // Planes, boxes and spheres rasterized into the G-buffer: emission + ambient, view depth and
-    // normal, albedo; sky = ambient at the camera far.
+    // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
+    // fog's shadow and the shadow maps; sky = ambient at the camera far.
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
-     {B::frame},
-     {I::sceneColor, I::sceneDepth, I::sceneAlbedo}},
-    // The surfaces' exact fog transmittance toward each light at the tile corners (shared/surface_corners.h).
-    {"surface corners", "surface_corners", Variant::Shapes, Dispatch::SurfaceCorners, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, I::sceneDepth, I::sceneAlbedo},
-     {B::surfaceCorners}, true},
-    // The lights on the surfaces like core/geometry.cpp shadeSurface, with the fog's shadow from the
-    // corners' trusted blends and the shadow maps; lists the pixels where a blend is not trusted.
-    {"surface light", "surface_light", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
-     {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
-      B::surfaceCorners, I::sceneDepth, I::sceneAlbedo, I::sceneColor},
-     {I::sceneColor, B::surfaceList}, true},
-    // The same at the listed pixels only, with the exact closed-form transmittance where needed.
-    {"surface exact", "surface_exact", Variant::Shapes, Dispatch::ExactPixels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
-      B::surfaceCorners, I::sceneDepth, I::sceneAlbedo, I::sceneColor, B::surfaceList},
-     {I::sceneColor}, true},
+     {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
+     {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
@@ -142,7 +127,7 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::ExactPixels)
+    if (p.dispatch == Dispatch::ExactFroxels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }

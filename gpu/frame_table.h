@@ -150,8 +150,6 @@ enum class Dispatch : uint8_t {
     Screen,       // one per pixel, SCREEN_GROUP_*
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
-    SurfaceCorners,  // one per corner of the surfaces' 8x8 pixel tiles (shared/surface_corners.h), SCREEN_GROUP_*
-    ExactPixels,  // one per pixel the surface light pass listed in surfaceList, SURFACE_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
     GlowRects,    // one dispatch per glowing light over its screen rectangle (shared/glow.h), SCREEN_GROUP_*
     Raster,       // the geometry pass's draw (not a dispatch)
@@ -212,7 +210,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 14> kPasses;
+extern const std::array<PassDecl, 11> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -8,31 +8,27 @@ namespace brume::gpu {
 namespace {
 
 Result<RenderPassOwner> createRenderPass(const Device& device) {
-    // sceneColor, sceneDepth, sceneAlbedo, then the depth buffer.
-    constexpr int kColors = 3;
-    std::array<VkAttachmentDescription, kColors + 1> att{};
-    for (int i = 0; i < kColors + 1; ++i) {
+    std::array<VkAttachmentDescription, 3> att{};
+    for (int i = 0; i < 3; ++i) {
         VkAttachmentDescription& a = att[static_cast<size_t>(i)];
         a.samples = VK_SAMPLE_COUNT_1_BIT;
         a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        a.storeOp = i < kColors ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        a.storeOp = i < 2 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
         a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
         a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
         // The composite reads the colour attachments as storage images.
-        a.finalLayout = i < kColors ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        a.finalLayout = i < 2 ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     }
     att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    att[1].format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    att[2].format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    att[3].format = VK_FORMAT_D32_SFLOAT;
-    const std::array<VkAttachmentReference, kColors> colors{{{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                                             {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                                             {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}}};
-    const VkAttachmentReference depth{kColors, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    att[1].format = VK_FORMAT_R32_SFLOAT;
+    att[2].format = VK_FORMAT_D32_SFLOAT;
+    const std::array<VkAttachmentReference, 2> colors{{{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                                       {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}}};
+    const VkAttachmentReference depth{2, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
     VkSubpassDescription sub{};
     sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = kColors;
+    sub.colorAttachmentCount = 2;
     sub.pColorAttachments = colors.data();
     sub.pDepthStencilAttachment = &depth;
     const VkPipelineStageFlags attachmentStages =
@@ -41,12 +37,11 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
     const VkAccessFlags attachmentWrites =
         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     const std::array<VkSubpassDependency, 2> deps{{
-        // The previous render's surface passes (which write sceneColor), composite and copies must
-        // finish before the clear.
+        // The previous render's composite and copies must finish reading before the clear.
         {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-         attachmentStages, VK_ACCESS_SHADER_WRITE_BIT, attachmentWrites, 0},
+         attachmentStages, 0, attachmentWrites, 0},
         {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT, 0},
+         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, 0},
     }};
     VkRenderPassCreateInfo info = vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
     info.attachmentCount = static_cast<uint32_t>(att.size());
@@ -61,16 +56,18 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
     return RenderPassOwner(device.vk(), rp);
 }
 
-Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass) {
+Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass,
+                                     const SpecKey& key, const char* fragment) {
     Result<ShaderModuleOwner> vert = createShaderModule(device, "geometry.vert");
     if (!vert) return vert.error();
-    Result<ShaderModuleOwner> frag = createShaderModule(device, "geometry.frag");
+    Result<ShaderModuleOwner> frag = createShaderModule(device, fragment);
     if (!frag) return frag.error();
+    const Specialization spec(key);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
-                 vert.value().get(), "main", nullptr};
+                 vert.value().get(), "main", &spec.info};
     stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-                 frag.value().get(), "main", nullptr};
+                 frag.value().get(), "main", &spec.info};
 
     const VkVertexInputBindingDescription binding{0, sizeof(GeometryVertex), VK_VERTEX_INPUT_RATE_VERTEX};
     std::array<VkVertexInputAttributeDescription, 4> attrs{};
@@ -95,7 +92,7 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     depth.depthTestEnable = VK_TRUE;
     depth.depthWriteEnable = VK_TRUE;
     depth.depthCompareOp = VK_COMPARE_OP_LESS;
-    std::array<VkPipelineColorBlendAttachmentState, 3> blendAtt{};
+    std::array<VkPipelineColorBlendAttachmentState, 2> blendAtt{};
     for (auto& b : blendAtt) b.colorWriteMask = 0xF;
     VkPipelineColorBlendStateCreateInfo blend = vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
     blend.attachmentCount = static_cast<uint32_t>(blendAtt.size());
@@ -121,7 +118,7 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     VkPipeline pipeline = VK_NULL_HANDLE;
     BRUME_VK(vkCreateGraphicsPipelines(device.vk(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
              "create the geometry pipeline");
-    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, "geometry pipeline");
+    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, "geometry pipeline [" + key.text() + "]");
     return PipelineOwner(device.vk(), pipeline);
 }
 
@@ -132,15 +129,20 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     Result<RenderPassOwner> rp = createRenderPass(device);
     if (!rp) return rp.error();
     pass.renderPass_ = std::move(rp.value());
-    BRUME_TRY(pass.usePipeline(device, layout));
+    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}, false));
     return pass;
 }
 
-Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout) {
-    if (pipeline_) return {};
-    Result<PipelineOwner> pipeline = createPipeline(device, layout, renderPass_.get());
-    if (!pipeline) return pipeline.error();
-    pipeline_ = std::move(pipeline.value());
+Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key,
+                                       bool shapes) {
+    auto it = pipelines_.find({key, shapes});
+    if (it == pipelines_.end()) {
+        Result<PipelineOwner> pipeline =
+            createPipeline(device, layout, renderPass_.get(), key, shapes ? "geometry_shapes.frag" : "geometry.frag");
+        if (!pipeline) return pipeline.error();
+        it = pipelines_.emplace(std::pair{key, shapes}, std::move(pipeline.value())).first;
+    }
+    pipeline_ = it->second.get();
     return {};
 }
 
@@ -152,8 +154,8 @@ Result<void> GeometryPass::attach(const Device& device, const FrameResources& r)
                                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "geometry depth buffer");
     if (!depth) return depth.error();
     depthBuffer_ = std::move(depth.value());
-    const std::array<VkImageView, 4> views{r[ImageId::sceneColor].view.get(), r[ImageId::sceneDepth].view.get(),
-                                           r[ImageId::sceneAlbedo].view.get(), depthBuffer_.view.get()};
+    const std::array<VkImageView, 3> views{r[ImageId::sceneColor].view.get(), r[ImageId::sceneDepth].view.get(),
+                                           depthBuffer_.view.get()};
     VkFramebufferCreateInfo info = vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
     info.renderPass = renderPass_.get();
     info.attachmentCount = static_cast<uint32_t>(views.size());
@@ -176,11 +178,10 @@ void GeometryPass::record(const PassContext& ctx) const {
     const glm::vec3 ambient = ctx.ambient;
     const float cameraFar = ctx.cameraFar;
     const VkExtent2D extent{static_cast<uint32_t>(r.size.x), static_cast<uint32_t>(r.size.y)};
-    std::array<VkClearValue, 4> clears{};
+    std::array<VkClearValue, 3> clears{};
     clears[0].color = {{ambient.r, ambient.g, ambient.b, 1.0f}};  // sky radiance
     clears[1].color = {{cameraFar, 0.0f, 0.0f, 0.0f}};            // sky view depth
-    clears[2].color = {{0.0f, 0.0f, 0.0f, 0.0f}};                 // sky: no surface
-    clears[3].depthStencil = {1.0f, 0};
+    clears[2].depthStencil = {1.0f, 0};
     VkRenderPassBeginInfo begin = vkStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
     begin.renderPass = renderPass_.get();
     begin.framebuffer = framebuffer_.get();
@@ -195,7 +196,7 @@ void GeometryPass::record(const PassContext& ctx) const {
         const VkRect2D scissor{{0, 0}, extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, b.pipelineLayout.get(), 0, 1, &b.set, 0,
                                 nullptr);
         const VkDeviceSize offset = 0;

@@ -38,20 +38,23 @@ void dispatchPass(const PassContext& ctx);
 void recordClearMedia(const PassContext& ctx);
 
 // Geometry (Record::Geometry): planes, boxes and spheres rasterized with a depth test into the
-// G-buffer targets sceneColor (emission + ambient), sceneDepth (view depth, normal) and sceneAlbedo;
-// the surface passes add the lights (shaders/surface_body.glsl).
+// sceneColor and sceneDepth targets, shaded like core/geometry.cpp shadeSurface with the fog's
+// shadow and the shadow maps, not exact occlusion.
 class GeometryPass {
 public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
-    // Creates the pipeline on first use (it needs no specialization: the G-buffer has no scene-dependent code).
-    Result<void> usePipeline(const Device& device, VkPipelineLayout layout);
+    // Selects (creating on first use) the pipeline specialized for key (pipeline.h SpecKey), with the
+    // fragment shader's variant with the sampled fog shadows of ellipsoids and cylinders or not
+    // (frame_table.h VariantKey::shapes).
+    Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes);
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
     void record(const PassContext& ctx) const;
 
 private:
     RenderPassOwner renderPass_;
-    PipelineOwner pipeline_;
+    std::map<std::pair<SpecKey, bool>, PipelineOwner> pipelines_;  // by specialization key and shapes variant
+    VkPipeline pipeline_ = VK_NULL_HANDLE;                          // the one usePipeline chose
     GpuImage depthBuffer_;  // d32, depth test only
     FramebufferOwner framebuffer_;
 };

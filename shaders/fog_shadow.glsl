@@ -82,10 +82,12 @@ vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, flo
     return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
 }
 
-// Surfaces (core: surfaceFogTransmittance): the vdb layer's blend, which multiplies the analytic
-// transmittance (the tile corners' blend or the exact closed form: surface_body.glsl); 1 for a light
-// without fog shadows. s: shadowLookupAt of the shading origin, computed once for all lights.
-vec3 surfaceVdbBlend(int light, SurfaceShadowLookup s) {
+// Surfaces (core: surfaceFogTransmittance): the exact closed form everywhere, times the vdb layer's
+// blend. Not the volume's blend with the exact fallback: lavapipe runs both sides of that branch, so
+// the blend only added its 8 loads to the exact form's cost (docs/performance.md, "perfgeo").
+// s: shadowLookupAt of p, computed once for all lights (the vdb layer's lookup).
+vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
-    return vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
+    vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
+    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
 }

@@ -1,10 +1,11 @@
-// The surfaces' G-buffer: the light-independent part of core/geometry.cpp shadeSurface (emission +
-// ambient), the view depth with the two-sided normal, and the albedo. The lights are added by the
-// surface passes (surface_body.glsl), which evaluate the fog's transmittance toward them per tile
-// corner rather than per fragment (shared/surface_corners.h).
+// Lambert direct light x the fog's transmittance toward the light + ambient + emission, as
+// core/geometry.cpp shadeSurface with the froxel renderer's fog shadow. Writes radiance and view depth for the composite.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
+#include "fog_shadow.glsl"
+#include "sun_shadow.glsl"
+#include "local_shadow.glsl"
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -12,15 +13,33 @@ layout(location = 2) in vec3 albedo;
 layout(location = 3) in vec3 emission;
 layout(location = 4) in float viewDepth;
 
-layout(location = 0) out vec4 outRadiance;     // sceneColor
-layout(location = 1) out vec4 outDepthNormal;  // sceneDepth: view depth, normal
-layout(location = 2) out vec4 outAlbedo;       // sceneAlbedo: albedo, 1 = a surface
+layout(location = 0) out vec4 outRadiance;
+layout(location = 1) out float outViewDepth;
 
 void main() {
     vec3 n = normalize(worldNormal);
     // Two-sided like the CPU's ray queries: the normal faces the camera.
     if (dot(n, frame.cameraPosition.xyz - worldPos) < 0.0f) n = -n;
-    outRadiance = vec4(emission + albedo * frame.ambient.rgb, 1.0f);
-    outDepthNormal = vec4(viewDepth, n);
-    outAlbedo = vec4(albedo, 1.0f);
+    vec3 radiance = emission + albedo * frame.ambient.rgb;
+    // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
+    vec3 m = abs(worldPos);
+    vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
+    SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadowReduction);
+    // The sun shadow map serves one light (frame.sunShadowLight): looked up once, not in every trip of
+    // the light loop (lavapipe runs the lookup for every light, mapped or not: docs/performance.md).
+    int sunLight = frame.sunShadowLight - 1;
+    float sunVisibility = sunShadowVisibility(sunLight, origin);
+    // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
+    int reach = lightReachOffset(frame.froxelDims.xyz);
+    int count = lightClusters[reach];
+    for (int k = 0; k < count; ++k) {
+        int i = lightClusters[reach + 1 + k];
+        LightSample ls = evalLight(lights[i], worldPos);
+        vec3 direct = lambert(albedo, n, ls);
+        if (direct == vec3(0.0f)) continue;
+        radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *
+                    (i == sunLight ? sunVisibility : 1.0f) * localShadowVisibility(i, origin);
+    }
+    outRadiance = vec4(radiance, 1.0f);
+    outViewDepth = viewDepth;
 }

@@ -32,9 +32,7 @@
     X(localShadowMaps, 9, STORAGE, std430, readonly buffer, LocalShadowBlock, float localShadowDepth[];) \
     X(exactList, 23, STORAGE_INDIRECT, std430, buffer, ExactListBlock, ExactListHeader exactList; uint exactFroxels[];) \
     X(distantTable, 24, STORAGE_GPU, std430, buffer, DistantTableBlock, vec4 distantTable[];) \
-    X(influence, 25, STORAGE, std430, readonly buffer, InfluenceBlock, InfluenceHeader influenceHeader; InfluenceSample influenceSamples[];) \
-    X(surfaceCorners, 27, STORAGE_GPU, std430, buffer, SurfaceCornerBlock, vec4 surfaceCorners[];) \
-    X(surfaceList, 28, STORAGE_INDIRECT, std430, buffer, SurfaceListBlock, ExactListHeader surfaceList; uint surfaceExactPixels[];)
+    X(influence, 25, STORAGE, std430, readonly buffer, InfluenceBlock, InfluenceHeader influenceHeader; InfluenceSample influenceSamples[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -55,10 +53,6 @@
 //                       by the distant fog pass, read by the composite
 //   influence           InfluenceHeader, then InfluenceSample[] (influence.h): the influencers and
 //                       their wakes at the scene time (core/influence.h), read by voxelize
-//   surfaceCorners      vec4[]: per tile corner its view depth, then the surfaces' fog transmittance
-//                       toward each light (surface_corners.h), written by the surface corners pass
-//   surfaceList         ExactListHeader, then uint[] (pixel x + width y): the pixels whose fog
-//                       transmittance the surface light pass left to the surface exact pass
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
@@ -74,9 +68,8 @@
     X(integratedScattering, 14, rgba32f, image3D, FRAME_READBACK) \
     X(integratedTransmittance, 15, rgba32f, image3D, FRAME_READBACK) \
     X(sceneColor, 16, rgba32f, image2D, TARGET) \
-    X(sceneDepth, 17, rgba32f, image2D, TARGET) \
-    X(outputImage, 18, rgba32f, image2D, FRAME_OUTPUT) \
-    X(sceneAlbedo, 26, rgba32f, image2D, TARGET)
+    X(sceneDepth, 17, r32f, image2D, TARGET) \
+    X(outputImage, 18, rgba32f, image2D, FRAME_OUTPUT)
 
 // What the images hold:
 //   mediaScatteringG       rgb sigma_s [1/m], a phase g        (voxelize)
@@ -85,9 +78,8 @@
 //   sourceImage            rgb source S                         (light; temporal resolves it)
 //   integratedScattering   camera -> far side of each slice     (integrate)
 //   integratedTransmittance                                     (integrate)
-//   sceneColor             shaded surfaces / sky radiance       (geometry: emission + ambient; surface light, exact: + lights)
-//   sceneDepth             x: view depth [m], camera far = sky; yzw: the surface normal, facing the camera (geometry)
-//   sceneAlbedo            rgb: surface albedo; a: 1 on a surface, 0 = sky (geometry)
+//   sceneColor             shaded surfaces / sky radiance       (geometry)
+//   sceneDepth             view depth [m], camera far = sky     (geometry)
 //   outputImage            the composited image                 (composite, debug view)
 
 // Temporal history: ping-pong pairs of froxel images kept across frames,
