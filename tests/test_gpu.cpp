@@ -308,10 +308,11 @@ TEST_F(GpuTest, FogShadowsOnFogAndGroundMatchCpu) {
 }
 
 // A dense block (optical depth 20 toward an overhead sun) casts a shadow band only ~6 pixel rows tall
-// on the ground at 96x54, narrower than the surfaces' 8x8 tiles whose corners may all be sunlit: the
-// tiles' conservative rule (shared/surface_corners.h) must take the exact transmittance there, so no
-// sun reaches the ground beneath the block's core, on the GPU as on the CPU
-// (FogShadowDenseBlock.NoLightLeaksThrough), and the sunlit ground around it agrees with the CPU.
+// on the ground at 96x54, narrower than an 8x8 pixel tile: no sun may reach the ground beneath the
+// block's core on the GPU either (FogShadowDenseBlock.NoLightLeaksThrough is the CPU's), and the
+// sunlit ground around it agrees with the CPU. A scheme that interpolates the surfaces' fog
+// transmittance between tile corners without a conservative rule fails it (docs/performance.md,
+// "geotile" and "geo").
 TEST_F(GpuTest, DenseBlockLetsNoSunOntoTheGroundBeneath) {
     Scene s;
     s.camera.position = {0.0f, 2.0f, 9.0f};
@@ -449,10 +450,9 @@ TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
     ASSERT_TRUE(renderer->render(s, smallRequest()).ok());  // warm-up: first dispatches compile shaders
     auto gpu = renderer->render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
-    const std::vector<std::string> expected{"shadow volume", "geometry",  "surface corners", "surface light",
-                                            "surface exact", "voxelize",  "light",           "light exact",
-                                            "temporal",      "integrate", "distant fog",     "composite",
-                                            "glow",          "readback"};
+    const std::vector<std::string> expected{"shadow volume", "geometry",    "voxelize",  "light", "light exact",
+                                            "temporal",      "integrate",   "distant fog", "composite", "glow",
+                                            "readback"};
     ASSERT_EQ(gpu.value().passes.size(), expected.size());
     double sum = 0.0;
     for (size_t i = 0; i < expected.size(); ++i) {
