@@ -118,6 +118,8 @@ Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bo
         usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;  // cleared with vkCmdFillBuffer each frame
         memory = Memory::Readback;
     }
+    // Filled with NaN before each frame under GpuOptions::poisonShadowVolume (tests).
+    if (id == BufferId::shadowTransmittance) usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     // Reset with vkCmdUpdateBuffer each frame, read as a dispatch's group count.
     if (d.kind == BufferKind::STORAGE_INDIRECT)
         usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
@@ -221,7 +223,6 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            dirty));
     BRUME_TRY(ensureScreenImages(size, dirty));
     const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
-    res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
     // Scenes with vdb grids keep room for each light's vdb layer (shared/vdb_shadow.h) after the
     // analytic ones, whether or not this frame's request fills it.
     bool anyGrid = false;
@@ -265,6 +266,16 @@ void recordClearMedia(const PassContext& ctx) {
         memoryBarrier(ctx.cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, compute,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     }
+    dispatchPass(ctx);
+}
+
+void pushRegion(const PassContext& ctx, const FroxelRegion& region) {
+    const shd::FroxelRegionParams p{glm::ivec4(region.lo, 0), glm::ivec4(region.hi, 0)};
+    vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
+}
+
+void recordShadowCells(const PassContext& ctx) {
+    pushRegion(ctx, ctx.res->shadowCells);
     dispatchPass(ctx);
 }
 
@@ -330,6 +341,11 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         vkCmdUpdateBuffer(cmd, res[d.id].buffer.get(), 0, sizeof(emptyList), &emptyList);
         hazards.wrote(d.id, VK_PIPELINE_STAGE_TRANSFER_BIT);
     }
+    if (poisonShadowVolume) {
+        constexpr uint32_t kQuietNaN = 0x7fc00000u;
+        vkCmdFillBuffer(cmd, res[BufferId::shadowTransmittance].buffer.get(), 0, VK_WHOLE_SIZE, kQuietNaN);
+        hazards.wrote(BufferId::shadowTransmittance, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    }
     // The images rewritten every frame start from UNDEFINED: their old contents are discarded; the
     // previous frame finished before its fence was signalled, so nothing earlier needs waiting for.
     std::vector<VkImage> frameImages;
@@ -382,6 +398,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         switch (p.record) {
             case Record::Dispatch: dispatchPass(ctx); break;
             case Record::ClearMedia: recordClearMedia(ctx); break;
+            case Record::ShadowCells: recordShadowCells(ctx); break;
             case Record::Geometry:
                 BRUME_TRY(geometry.usePipeline(*device, layout, spec, variant.shapes));
                 geometry.record(ctx);

@@ -190,6 +190,7 @@ enum class Record : uint8_t {
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)
+    ShadowCells,   // push the shadow volume's cell region, then dispatch (frame_executor.cpp)
 };
 
 struct PassDecl {

@@ -77,6 +77,7 @@ Result<std::unique_ptr<GpuRenderer>> GpuRenderer::create(const GpuOptions& optio
     if (!d) return d.error();
     s->device = std::move(d.value());
     s->froxelRegions = options.froxelRegions;
+    s->poisonShadowVolume = options.poisonShadowVolume;
     BRUME_TRY(s->createCommands());
     BRUME_TRY(s->createPasses());
     return std::unique_ptr<GpuRenderer>(new GpuRenderer(std::move(s)));
@@ -232,8 +233,13 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     s_->froxelSpec = froxelSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
-    // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
-    r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadowReduction).z * reach[1 + cs.lights.size()];
+    // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h), and in
+    // them only the cells some reader needs: those around the media region's froxels (the whole
+    // volume when surfaces read vdb layers).
+    const FroxelRegion shadowCells = shadowCellRegion(media, frame, /*surfaces=*/!vertices.empty());
+    const glm::ivec3 shadowCellExtent = shadowCells.empty() ? glm::ivec3(0) : shadowCells.hi - shadowCells.lo;
+    r.shadowCells = shadowCells;
+    r.shadowExtent = {shadowCellExtent.x, shadowCellExtent.y, shadowCellExtent.z * reach[1 + cs.lights.size()]};
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
     std::memcpy(r[BufferId::sunShadowMap].mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
