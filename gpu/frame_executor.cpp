@@ -279,6 +279,11 @@ void recordShadowCells(const PassContext& ctx) {
     dispatchPass(ctx);
 }
 
+void recordComposite(const PassContext& ctx) {
+    pushRegion(ctx, ctx.res->temporalRegion);
+    dispatchPass(ctx);
+}
+
 void dispatchPass(const PassContext& ctx) {
     bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
     const FrameResources& r = *ctx.res;
@@ -399,6 +404,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
             case Record::Dispatch: dispatchPass(ctx); break;
             case Record::ClearMedia: recordClearMedia(ctx); break;
             case Record::ShadowCells: recordShadowCells(ctx); break;
+            case Record::Composite: recordComposite(ctx); break;
             case Record::Geometry:
                 BRUME_TRY(geometry.usePipeline(*device, layout, spec, variant.shapes));
                 geometry.record(ctx);

@@ -191,6 +191,7 @@ enum class Record : uint8_t {
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)
     ShadowCells,   // push the shadow volume's cell region, then dispatch (frame_executor.cpp)
+    Composite,     // push the temporal region (the columns that can hold fog), then dispatch (frame_executor.cpp)
 };
 
 struct PassDecl {

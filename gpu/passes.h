@@ -39,6 +39,10 @@ void pushRegion(const PassContext& ctx, const FroxelRegion& region);
 // Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
 void recordShadowCells(const PassContext& ctx);
 
+// Composite (Record::Composite): the temporal region pushed (outside its columns the integrated
+// volumes hold no fog: the workgroups that read none copy the background), then the dispatch.
+void recordComposite(const PassContext& ctx);
+
 // Voxelize (Record::ClearMedia): the images it writes cleared to 0 when the media region is not the
 // whole grid, then the dispatch over the region.
 void recordClearMedia(const PassContext& ctx);
