@@ -163,8 +163,9 @@ Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty
         GpuImage& slot = res[d.id];
         slot = GpuImage{};
         VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        if (d.flags & image_flags::TARGET) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        if (d.flags & image_flags::OUTPUT) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        // The composite copies the target sceneColor over the output where no fog is.
+        if (d.flags & image_flags::TARGET) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        if (d.flags & image_flags::OUTPUT) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         Result<GpuImage> img = createImage(*device, e, false, vkFormat(d.format), usage, d.name);
         if (!img) return img.error();
         slot = std::move(img.value());
@@ -280,7 +281,27 @@ void recordShadowCells(const PassContext& ctx) {
 }
 
 void recordComposite(const PassContext& ctx) {
-    pushRegion(ctx, ctx.res->temporalRegion);
+    const FrameResources& r = *ctx.res;
+    if (r.compositeLo != glm::ivec2(0) || r.compositeHi != r.size) {
+        // After the geometry pass's writes (and the executor's barrier), before the dispatch's.
+        const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        const VkImage color = r[ImageId::sceneColor].image.get(), output = r[ImageId::outputImage].image.get();
+        constexpr VkImageLayout G = VK_IMAGE_LAYOUT_GENERAL, SRC = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                DST = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        const std::array<LayoutChange, 2> toCopy{{{color, G, SRC}, {output, G, DST}}};
+        layoutBarrier(ctx.cmd, toCopy, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT, transfer,
+                      VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+        VkImageCopy all{};
+        all.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        all.dstSubresource = all.srcSubresource;
+        all.extent = r[ImageId::outputImage].extent;
+        vkCmdCopyImage(ctx.cmd, color, SRC, output, DST, 1, &all);
+        const std::array<LayoutChange, 2> back{{{color, SRC, G}, {output, DST, G}}};
+        layoutBarrier(ctx.cmd, back, transfer, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    pushRegion(ctx, FroxelRegion{glm::ivec3(r.compositeLo, 0), glm::ivec3(r.compositeHi, 1)});
     dispatchPass(ctx);
 }
 
@@ -299,6 +320,11 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::Screen:
             vkCmdDispatch(ctx.cmd, groups(r.size.x, shd::SCREEN_GROUP_X), groups(r.size.y, shd::SCREEN_GROUP_Y), 1);
             break;
+        case Dispatch::CompositePixels: {
+            const glm::ivec2 e = glm::max(r.compositeHi - r.compositeLo, glm::ivec2(0));
+            vkCmdDispatch(ctx.cmd, groups(e.x, shd::SCREEN_GROUP_X), groups(e.y, shd::SCREEN_GROUP_Y), 1);
+            break;
+        }
         case Dispatch::ShadowCells:
             vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));

@@ -46,6 +46,10 @@ struct FrameResources {
     // z * listed lights (shaders/shared/shadow_volume.h).
     FroxelRegion shadowCells;
     glm::ivec3 shadowExtent{0};
+    // The pixels the composite dispatch covers, [lo, hi) (gpu_renderer.cpp compositePixels); the
+    // others get sceneColor copied (frame_executor.cpp recordComposite).
+    glm::ivec2 compositeLo{0};
+    glm::ivec2 compositeHi{0};
     // The froxels the voxelize and light passes dispatch over (core/media_region.h); the rest of
     // the media and source images is cleared to 0 when it is not the whole grid.
     glm::ivec3 mediaOrigin{0};

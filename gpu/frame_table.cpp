@@ -61,7 +61,7 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, B::volumes, B::lights, B::lightClusters},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.
-    {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Composite,
+    {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
      {B::frame, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),

@@ -39,8 +39,9 @@ void pushRegion(const PassContext& ctx, const FroxelRegion& region);
 // Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
 void recordShadowCells(const PassContext& ctx);
 
-// Composite (Record::Composite): the temporal region pushed (outside its columns the integrated
-// volumes hold no fog: the workgroups that read none copy the background), then the dispatch.
+// Composite (Record::Composite): when the pixels that can read fog (FrameResources::compositeLo,
+// compositeHi) are not the whole screen, sceneColor copied over outputImage (the others' result: no
+// fog leaves the background as it is); then those pixels pushed and dispatched.
 void recordComposite(const PassContext& ctx);
 
 // Voxelize (Record::ClearMedia): the images it writes cleared to 0 when the media region is not the

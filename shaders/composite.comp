@@ -9,21 +9,11 @@
 #include "distant_table.h"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
-// The temporal region (core/media_region.h temporalFroxelRegion): outside its columns the integrated
-// volumes hold scattering 0 and transmittance 1 at every slice (gpu/pass_temporal.cpp's clears).
+// The pixels dispatched, [lo.xy, hi.xy): those whose lookups can read a froxel column of the temporal
+// region, or every pixel with height or depth fog (gpu/gpu_renderer.cpp compositePixels). The others
+// would read scattering 0 and transmittance 1 everywhere, which leave the background as it is: the
+// frame copies sceneColor over outputImage first (frame_executor.cpp recordComposite).
 layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
-
-// Whether some pixel of this workgroup looks up (integratedLookup: columns floor(pixel / tile - 0.5)
-// and the next, clamped) a froxel column of the region. Uniform over the workgroup, so lavapipe
-// branches on it instead of running both sides.
-bool groupReadsFog() {
-    ivec2 first = ivec2(gl_WorkGroupID.xy) * ivec2(SCREEN_GROUP_X, SCREEN_GROUP_Y);
-    ivec2 last = first + ivec2(SCREEN_GROUP_X - 1, SCREEN_GROUP_Y - 1);
-    int tile = frame.froxelDims.w;
-    ivec2 lo = max(first / tile - ivec2(1), ivec2(0));   // at or below every pixel's lower column
-    ivec2 hi = last / tile + ivec2(1);                    // at or above every pixel's upper column
-    return all(lessThanEqual(region.lo.xy, hi)) && all(greaterThan(region.hi.xy, lo));
-}
 
 Accumulated integratedAt(int x, int y, int s) {
     Accumulated a;
@@ -75,19 +65,15 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
 }
 
 void main() {
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(px, frame.counts.xy))) return;
-    vec3 color = imageLoad(sceneColor, px).rgb;
-    // Without height or depth fog, and with no column of the region under the workgroup, every
-    // lookup reads scattering 0 and transmittance 1, which leave the background as it is: skipped.
-    if (SPEC_DISTANT_FOG != 0 || groupReadsFog()) {
-        float viewDepth = imageLoad(sceneDepth, px).r;
-        vec2 pixel = vec2(px) + vec2(0.5f);
-        Accumulated fog = sampleIntegrated(pixel, viewDepth);
-        float froxelFar = frame.froxelRange.y;
-        // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; the closed form is compiled out.
-        if (SPEC_DISTANT_FOG != 0 && viewDepth > froxelFar) fog = composeAccumulated(fog, distantFogAt(pixel, viewDepth));
-        color = compositeFog(color, fog);
-    }
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + region.lo.xy;
+    if (any(greaterThanEqual(px, region.hi.xy))) return;
+    vec3 background = imageLoad(sceneColor, px).rgb;
+    float viewDepth = imageLoad(sceneDepth, px).r;
+    vec2 pixel = vec2(px) + vec2(0.5f);
+    Accumulated fog = sampleIntegrated(pixel, viewDepth);
+    float froxelFar = frame.froxelRange.y;
+    // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; the closed form is compiled out.
+    if (SPEC_DISTANT_FOG != 0 && viewDepth > froxelFar) fog = composeAccumulated(fog, distantFogAt(pixel, viewDepth));
+    vec3 color = compositeFog(background, fog);
     imageStore(outputImage, px, vec4(color, 1.0f));
 }
