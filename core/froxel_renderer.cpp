@@ -283,7 +283,11 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     // Layers of lights that touch nothing shaded are skipped: nobody reads them.
     const LightReach reach = buildLightReach(cs, frame, clusters, request.lightCulling);
-    const ShadowVolume shadow = computeShadowVolume(cs, frame, frame.shadowReduction, threads, &reach.shadowVolume);
+    // Only the cells the light pass's froxels (those with media) and the surfaces read, as on the GPU.
+    const FroxelRegion shadowCells =
+        shadowCellRegion(mediaFroxelRegion(cs, frame), frame, /*surfaces=*/!scene.geometry.empty());
+    const ShadowVolume shadow =
+        computeShadowVolume(cs, frame, frame.shadowReduction, threads, &reach.shadowVolume, &shadowCells);
     v.overfullClusters = clusters.overfullClusters;
     const GeometrySet geometry(scene.geometry);
     const SunShadowMap& sun =

@@ -65,6 +65,14 @@ FroxelRegion temporalFroxelRegion(const FroxelRegion& media, glm::ivec3 dims) {
     return FroxelRegion{glm::max(media.lo - 1, glm::ivec3(0)), glm::min(media.hi + 1, dims)};
 }
 
+FroxelRegion shadowCellRegion(const FroxelRegion& media, const shd::FrameUniforms& frame, bool surfaces) {
+    const int r = std::max(frame.shadowReduction, 1);
+    const glm::ivec3 cells = shd::shadowVolumeDims(glm::ivec3(frame.froxelDims), r);
+    if (surfaces && frame.vdbShadowSamples > 0) return FroxelRegion{glm::ivec3(0), cells};
+    if (media.empty()) return FroxelRegion{};
+    return FroxelRegion{media.lo / r, glm::min((media.hi - 1) / r + 2, cells)};
+}
+
 bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner) {
     if (inner.empty()) return true;
     return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::greaterThanEqual(outer.hi, inner.hi));

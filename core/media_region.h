@@ -35,6 +35,16 @@ FroxelRegion mediaFroxelRegion(const CompiledScene& cs, const shd::FrameUniforms
 // media region is.
 FroxelRegion temporalFroxelRegion(const FroxelRegion& media, glm::ivec3 dims);
 
+// The cells of the fog transmittance volume (shared/shadow_volume.h, reduction frame.shadowReduction)
+// that some reader needs this frame, i.e. the cells the shadow volume pass computes:
+// - the light passes (light.comp, light_exact.comp; core: lightRow) read the 8 cells of
+//   shd::shadowLookup (cell f / r and the clamped upper one) only at froxels f with sigma_t > 0, all in
+//   `media`: the cells from media.lo / r up to and including (media.hi - 1) / r + 1, within the volume;
+// - surfaces (geometry.frag; core: surfaceFogTransmittance) read only the vdb layers, at any point of
+//   the grid: the whole volume when vdb shadows are on (frame.vdbShadowSamples > 0) and `surfaces`.
+// Indices are cells, not froxels. Empty when nothing reads the volume.
+FroxelRegion shadowCellRegion(const FroxelRegion& media, const shd::FrameUniforms& frame, bool surfaces);
+
 // Whether every froxel of `inner` lies in `outer` (an empty inner lies in any region).
 bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner);
 

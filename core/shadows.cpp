@@ -55,7 +55,7 @@ glm::vec3 vdbLayerBlend(const ShadowVolume& sv, const shd::FrameUniforms& frame,
 }  // namespace
 
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
-                                 int threads, const std::vector<int>* layers) {
+                                 int threads, const std::vector<int>* layers, const FroxelRegion* cells) {
     ShadowVolume sv;
     sv.reduction = reduction;
     const glm::ivec3 froxelDims = glm::ivec3(frame.froxelDims);
@@ -65,13 +65,17 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
     const size_t layerCount = cs.lights.size() * (frame.vdbShadowSamples > 0 ? 2 : 1);
     sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * layerCount,
                             glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
-    // One row of cells (light, z, y) per item.
-    parallelFor(lights * sv.dims.z * sv.dims.y, threads, [&](int r) {
-        const int y = r % sv.dims.y, z = (r / sv.dims.y) % sv.dims.z, light = r / (sv.dims.y * sv.dims.z);
+    const FroxelRegion region = cells ? *cells : FroxelRegion{glm::ivec3(0), sv.dims};
+    if (region.empty()) return sv;
+    const glm::ivec3 extent = region.hi - region.lo;
+    // One row of cells (light, z, y) of the region per item.
+    parallelFor(lights * extent.z * extent.y, threads, [&](int r) {
+        const int y = region.lo.y + r % extent.y, z = region.lo.z + (r / extent.y) % extent.z;
+        const int light = r / (extent.y * extent.z);
         const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
         if (!shd::fogShadowsLight(l, frame.localFogShadows)) return;
         if (layers && (*layers)[static_cast<size_t>(light)] == 0) return;
-        for (int x = 0; x < sv.dims.x; ++x) {
+        for (int x = region.lo.x; x < region.hi.x; ++x) {
             const glm::ivec3 froxel = shd::shadowCellFroxel(glm::ivec3(x, y, z), froxelDims, reduction);
             const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(froxel) + glm::vec3(frame.jitter), frame);
             const shd::LightSample ls = shd::evalLight(l, p);

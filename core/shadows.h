@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "compile.h"
+#include "media_region.h"
 #include "quality.h"
 #include "render.h"
 
@@ -44,8 +45,11 @@ struct ShadowVolume {
 };
 
 // layers: per light, 0 = skip its layer (core/light_reach.h; nobody reads it); null: every one.
+// cells: only these cells of each layer are computed (core/media_region.h shadowCellRegion: the ones
+// some reader needs), the others hold 1 like a skipped layer; null: every cell.
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
-                                 int threads, const std::vector<int>* layers = nullptr);
+                                 int threads, const std::vector<int>* layers = nullptr,
+                                 const FroxelRegion* cells = nullptr);
 
 // The light pass's transmittance toward light `light` for the froxel whose shd::shadowLookup is k
 // (sample point p): the volume's trilinear blend where its 8 cells agree, the exact closed form

@@ -39,6 +39,9 @@ struct GpuOptions {
     // false: the froxel passes run over the whole grid, not the regions that can hold media
     // (core/media_region.h); the images are the same, so this is for tests and measurements only.
     bool froxelRegions = true;
+    // Tests only: each frame first fills the fog transmittance volume with NaN, so that a reader of a
+    // cell the shadow volume pass did not write this frame shows in the image (tests/test_gpu_temporal.cpp).
+    bool poisonShadowVolume = false;
 };
 
 class Device {

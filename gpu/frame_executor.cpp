@@ -118,6 +118,8 @@ Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bo
         usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;  // cleared with vkCmdFillBuffer each frame
         memory = Memory::Readback;
     }
+    // Filled with NaN before each frame under GpuOptions::poisonShadowVolume (tests).
+    if (id == BufferId::shadowTransmittance) usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     // Reset with vkCmdUpdateBuffer each frame, read as a dispatch's group count.
     if (d.kind == BufferKind::STORAGE_INDIRECT)
         usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
@@ -214,8 +216,9 @@ Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty
         GpuImage& slot = res[d.id];
         slot = GpuImage{};
         VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        if (d.flags & image_flags::TARGET) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        if (d.flags & image_flags::OUTPUT) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        // The composite copies the target sceneColor over the output where no fog is.
+        if (d.flags & image_flags::TARGET) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        if (d.flags & image_flags::OUTPUT) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         Result<GpuImage> img = createImage(*device, e, false, vkFormat(d.format), usage, d.name);
         if (!img) return img.error();
         slot = std::move(img.value());
@@ -280,7 +283,6 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            dirty));
     BRUME_TRY(ensureScreenImages(size, dirty));
     const glm::ivec3 cells = shd::shadowVolumeDims(dims, shadowReduction);
-    res.shadowExtent = {cells.x, cells.y, cells.z * static_cast<int>(cs.lights.size())};
     // Scenes with vdb grids keep room for each light's vdb layer (shared/vdb_shadow.h) after the
     // analytic ones, whether or not this frame's request fills it.
     bool anyGrid = false;
@@ -327,6 +329,41 @@ void recordClearMedia(const PassContext& ctx) {
     dispatchPass(ctx);
 }
 
+void pushRegion(const PassContext& ctx, const FroxelRegion& region) {
+    const shd::FroxelRegionParams p{glm::ivec4(region.lo, 0), glm::ivec4(region.hi, 0)};
+    vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
+}
+
+void recordShadowCells(const PassContext& ctx) {
+    pushRegion(ctx, ctx.res->shadowCells);
+    dispatchPass(ctx);
+}
+
+void recordComposite(const PassContext& ctx) {
+    const FrameResources& r = *ctx.res;
+    if (r.compositeLo != glm::ivec2(0) || r.compositeHi != r.size) {
+        // After the geometry pass's writes (and the executor's barrier), before the dispatch's.
+        const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        const VkImage color = r[ImageId::sceneColor].image.get(), output = r[ImageId::outputImage].image.get();
+        constexpr VkImageLayout G = VK_IMAGE_LAYOUT_GENERAL, SRC = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                DST = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        const std::array<LayoutChange, 2> toCopy{{{color, G, SRC}, {output, G, DST}}};
+        layoutBarrier(ctx.cmd, toCopy, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT, transfer,
+                      VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+        VkImageCopy all{};
+        all.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        all.dstSubresource = all.srcSubresource;
+        all.extent = r[ImageId::outputImage].extent;
+        vkCmdCopyImage(ctx.cmd, color, SRC, output, DST, 1, &all);
+        const std::array<LayoutChange, 2> back{{{color, SRC, G}, {output, DST, G}}};
+        layoutBarrier(ctx.cmd, back, transfer, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    pushRegion(ctx, FroxelRegion{glm::ivec3(r.compositeLo, 0), glm::ivec3(r.compositeHi, 1)});
+    dispatchPass(ctx);
+}
+
 void dispatchPass(const PassContext& ctx) {
     bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
     const FrameResources& r = *ctx.res;
@@ -342,6 +379,11 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::Screen:
             vkCmdDispatch(ctx.cmd, groups(r.size.x, shd::SCREEN_GROUP_X), groups(r.size.y, shd::SCREEN_GROUP_Y), 1);
             break;
+        case Dispatch::CompositePixels: {
+            const glm::ivec2 e = glm::max(r.compositeHi - r.compositeLo, glm::ivec2(0));
+            vkCmdDispatch(ctx.cmd, groups(e.x, shd::SCREEN_GROUP_X), groups(e.y, shd::SCREEN_GROUP_Y), 1);
+            break;
+        }
         case Dispatch::ShadowCells:
             vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
@@ -388,6 +430,11 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         if (d.kind != BufferKind::STORAGE_INDIRECT) continue;
         vkCmdUpdateBuffer(cmd, res[d.id].buffer.get(), 0, sizeof(emptyList), &emptyList);
         hazards.wrote(d.id, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    }
+    if (poisonShadowVolume) {
+        constexpr uint32_t kQuietNaN = 0x7fc00000u;
+        vkCmdFillBuffer(cmd, res[BufferId::shadowTransmittance].buffer.get(), 0, VK_WHOLE_SIZE, kQuietNaN);
+        hazards.wrote(BufferId::shadowTransmittance, VK_PIPELINE_STAGE_TRANSFER_BIT);
     }
     // The images rewritten every frame start from UNDEFINED: their old contents are discarded; the
     // previous frame finished before its fence was signalled, so nothing earlier needs waiting for.
@@ -441,6 +488,8 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         switch (p.record) {
             case Record::Dispatch: dispatchPass(ctx); break;
             case Record::ClearMedia: recordClearMedia(ctx); break;
+            case Record::ShadowCells: recordShadowCells(ctx); break;
+            case Record::Composite: recordComposite(ctx); break;
             case Record::Geometry:
                 BRUME_TRY(geometry.usePipeline(*device, layout, spec, variant.shapes));
                 geometry.record(ctx);

@@ -41,8 +41,15 @@ struct FrameResources {
 
     glm::ivec3 froxelDims{0};  // of the image3D resources
     glm::ivec2 size{0};        // of the image2D resources
-    // Cells x, y and z * lights: the shadow volume pass's dispatch (shaders/shared/shadow_volume.h).
+    // The cells the shadow volume pass computes in each listed light's layer (core/media_region.h
+    // shadowCellRegion, pushed as shd::FroxelRegionParams), and its dispatch: their extent x, y and
+    // z * listed lights (shaders/shared/shadow_volume.h).
+    FroxelRegion shadowCells;
     glm::ivec3 shadowExtent{0};
+    // The pixels the composite dispatch covers, [lo, hi) (gpu_renderer.cpp compositePixels); the
+    // others get sceneColor copied (frame_executor.cpp recordComposite).
+    glm::ivec2 compositeLo{0};
+    glm::ivec2 compositeHi{0};
     // The froxels the voxelize and light passes dispatch over (core/media_region.h); the rest of
     // the media and source images is cleared to 0 when it is not the whole grid.
     glm::ivec3 mediaOrigin{0};

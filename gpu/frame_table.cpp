@@ -19,7 +19,7 @@ using H = HistoryId;
 const std::array<PassDecl, 11> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
-    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::Dispatch,
+    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
      {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
      {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
@@ -61,7 +61,7 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, B::volumes, B::lights, B::lightClusters},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.
-    {"composite", "composite", Variant::None, Dispatch::Screen, When::Always, Record::Dispatch,
+    {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
      {B::frame, B::distantTable, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),

@@ -148,6 +148,7 @@ enum class Dispatch : uint8_t {
     RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
+    CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
@@ -190,6 +191,8 @@ enum class Record : uint8_t {
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)
+    ShadowCells,   // push the shadow volume's cell region, then dispatch (frame_executor.cpp)
+    Composite,     // copy the background where no fog is, push the pixels, dispatch (frame_executor.cpp)
 };
 
 struct PassDecl {

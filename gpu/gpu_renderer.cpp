@@ -4,6 +4,8 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <tuple>
+#include <utility>
 
 #include "core/clusters.h"
 #include "core/compile.h"
@@ -77,6 +79,7 @@ Result<std::unique_ptr<GpuRenderer>> GpuRenderer::create(const GpuOptions& optio
     if (!d) return d.error();
     s->device = std::move(d.value());
     s->froxelRegions = options.froxelRegions;
+    s->poisonShadowVolume = options.poisonShadowVolume;
     BRUME_TRY(s->createCommands());
     BRUME_TRY(s->createPasses());
     return std::unique_ptr<GpuRenderer>(new GpuRenderer(std::move(s)));
@@ -174,6 +177,22 @@ SpecKey froxelSpecKey(SpecKey k, const std::vector<bool>& inReach) {
     return k;
 }
 
+// The pixels whose composite lookups (shd::integratedLookup: columns floor(pixel / tile - 0.5) and
+// the next, clamped) can read a froxel column of the temporal region, [lo, hi); every pixel when
+// height or depth fog continues past the froxel far (distantFog). Outside the region's columns the
+// integrated volumes hold scattering 0 and transmittance 1 at every slice (pass_temporal.cpp), so the
+// other pixels' fog leaves the background as it is.
+std::pair<glm::ivec2, glm::ivec2> compositePixels(const FroxelRegion& t, glm::ivec2 size, int tile, bool distantFog) {
+    if (distantFog) return {glm::ivec2(0), size};
+    if (t.empty()) return {glm::ivec2(0), glm::ivec2(0)};
+    // Pixel x reads column c only if floor((x + 0.5) / tile - 0.5) is c - 1 or c: (c - 1) * tile <= x <
+    // (c + 1) * tile.
+    const glm::ivec2 lo = glm::max((glm::ivec2(t.lo) - 1) * tile, glm::ivec2(0));
+    const glm::ivec2 hi = glm::min((glm::ivec2(t.hi) + 1) * tile, size);
+    if (glm::any(glm::lessThanEqual(hi, lo))) return {glm::ivec2(0), glm::ivec2(0)};
+    return {lo, hi};
+}
+
 }  // namespace
 
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
@@ -232,8 +251,13 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     s_->froxelSpec = froxelSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
-    // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h).
-    r.shadowExtent.z = shd::shadowVolumeDims(dims, frame.shadowReduction).z * reach[1 + cs.lights.size()];
+    // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h), and in
+    // them only the cells some reader needs: those around the media region's froxels (the whole
+    // volume when surfaces read vdb layers).
+    const FroxelRegion shadowCells = shadowCellRegion(media, frame, /*surfaces=*/!vertices.empty());
+    const glm::ivec3 shadowCellExtent = shadowCells.empty() ? glm::ivec3(0) : shadowCells.hi - shadowCells.lo;
+    r.shadowCells = shadowCells;
+    r.shadowExtent = {shadowCellExtent.x, shadowCellExtent.y, shadowCellExtent.z * reach[1 + cs.lights.size()]};
     if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
     std::memcpy(r[BufferId::sunShadowMap].mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
@@ -260,6 +284,8 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         // Temporal and integrate run over the media region and its neighbours; the history side written
         // now is cleared first if an older frame left values outside them (FrameResources).
         r.temporalRegion = temporalFroxelRegion(media, dims);
+        std::tie(r.compositeLo, r.compositeHi) =
+            compositePixels(r.temporalRegion, size, frame.froxelDims.w, s_->spec[SpecId::SPEC_DISTANT_FOG] != 0);
         FroxelRegion& written = r.historyWritten[static_cast<size_t>(t.writeIndex)];
         r.clearHistoryOut = !regionContains(r.temporalRegion, written);
         written = FroxelRegion{glm::ivec3(0), dims};  // unknown until the frame has run

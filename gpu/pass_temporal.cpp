@@ -21,12 +21,6 @@ bool wholeGrid(const FrameResources& r) {
     return r.temporalRegion.lo == glm::ivec3(0) && r.temporalRegion.hi == r.froxelDims;
 }
 
-void pushRegion(const PassContext& ctx) {
-    const FroxelRegion& t = ctx.res->temporalRegion;
-    const shd::FroxelRegionParams p{glm::ivec4(t.lo, 0), glm::ivec4(t.hi, 0)};
-    vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
-}
-
 struct Clear {
     VkImage image;
     VkClearColorValue value;
@@ -56,7 +50,7 @@ void recordTemporal(const PassContext& ctx) {
     // The side written now last held an older frame's history: outside this frame's region it must
     // read 0, as a pass over the whole grid would have written there.
     if (r.clearHistoryOut) clearImages(cmd, {{outS, VkClearColorValue{}}, {outE, VkClearColorValue{}}});
-    pushRegion(ctx);
+    pushRegion(ctx, r.temporalRegion);
     dispatchPass(ctx);
     if ((ctx.variant && ctx.variant->temporalRest) || r.temporalRegion.empty()) return;
     const VkImage source = r[ImageId::sourceImage].image.get(), extinction = r[ImageId::mediaExtinction].image.get();
@@ -90,7 +84,7 @@ void recordIntegrate(const PassContext& ctx) {
         clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), VkClearColorValue{}},
                               {r[ImageId::integratedTransmittance].image.get(), one}});
     }
-    pushRegion(ctx);
+    pushRegion(ctx, r.temporalRegion);
     dispatchPass(ctx);
 }
 

@@ -33,6 +33,17 @@ struct PassContext {
 // Binds ctx.pipeline and the set and dispatches ctx.pass's rule.
 void dispatchPass(const PassContext& ctx);
 
+// Pushes region as the pass's shd::FroxelRegionParams.
+void pushRegion(const PassContext& ctx, const FroxelRegion& region);
+
+// Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
+void recordShadowCells(const PassContext& ctx);
+
+// Composite (Record::Composite): when the pixels that can read fog (FrameResources::compositeLo,
+// compositeHi) are not the whole screen, sceneColor copied over outputImage (the others' result: no
+// fog leaves the background as it is); then those pixels pushed and dispatched.
+void recordComposite(const PassContext& ctx);
+
 // Voxelize (Record::ClearMedia): the images it writes cleared to 0 when the media region is not the
 // whole grid, then the dispatch over the region.
 void recordClearMedia(const PassContext& ctx);

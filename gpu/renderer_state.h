@@ -31,6 +31,7 @@ struct GpuRenderer::State {
     std::vector<shd::GlowParams> glow;   // the glow pass's dispatches, one per glowing light in view
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
     bool froxelRegions = true;           // GpuOptions::froxelRegions
+    bool poisonShadowVolume = false;     // GpuOptions::poisonShadowVolume
     // A prepare that failed part-way (out of GPU memory) may have replaced resources without
     // rewriting the descriptors: the next prepare rewrites them all.
     bool descriptorsStale = false;

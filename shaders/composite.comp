@@ -9,6 +9,11 @@
 #include "distant_table.h"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
+// The pixels dispatched, [lo.xy, hi.xy): those whose lookups can read a froxel column of the temporal
+// region, or every pixel with height or depth fog (gpu/gpu_renderer.cpp compositePixels). The others
+// would read scattering 0 and transmittance 1 everywhere, which leave the background as it is: the
+// frame copies sceneColor over outputImage first (frame_executor.cpp recordComposite).
+layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
 
 Accumulated integratedAt(int x, int y, int s) {
     Accumulated a;
@@ -60,8 +65,8 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
 }
 
 void main() {
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(px, frame.counts.xy))) return;
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy) + region.lo.xy;
+    if (any(greaterThanEqual(px, region.hi.xy))) return;
     vec3 background = imageLoad(sceneColor, px).rgb;
     float viewDepth = imageLoad(sceneDepth, px).r;
     vec2 pixel = vec2(px) + vec2(0.5f);

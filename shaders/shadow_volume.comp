@@ -1,12 +1,14 @@
 // Shadow volume pass: each shadowing light's fog transmittance at the reduced grid's cells
 // (shared/shadow_volume.h; core: computeShadowVolume). Lights' layers are stacked along z in memory;
-// the dispatch covers the layers the light reach lists, one after the other; the others are never read.
+// the dispatch covers the layers the light reach lists, one after the other, and in each only the
+// cells of the pushed region (the cells the light pass's media region reads); the others are never read.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };  // cells, not froxels
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
@@ -14,10 +16,13 @@ void main() {
     // Only the layers some reader needs, listed by the light reach (core/light_reach.h); the others
     // are never read.
     int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;
-    int k = id.z / cells.z;
-    if (id.x >= cells.x || id.y >= cells.y || k >= lightClusters[layers]) return;
+    // Over the cells some reader needs (region: core/media_region.h shadowCellRegion): the others
+    // are never read this frame.
+    int depth = region.hi.z - region.lo.z;
+    int k = id.z / depth;
+    ivec3 cell = ivec3(id.xy, id.z - k * depth) + region.lo.xyz;
+    if (cell.x >= cells.x || cell.y >= cells.y || k >= lightClusters[layers]) return;
     int light = lightClusters[layers + 1 + k];
-    ivec3 cell = ivec3(id.xy, id.z - k * cells.z);
     ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
     LightSample ls = evalLight(lights[light], p);

@@ -10,16 +10,20 @@
 #include "vdb_shadow.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };  // cells, not froxels
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
     ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadowReduction);
     // The same layers as shadow_volume.comp: only those the light reach lists.
     int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;
-    int k = id.z / cells.z;
-    if (id.x >= cells.x || id.y >= cells.y || k >= lightClusters[layers]) return;
+    // Over the cells some reader needs (region: core/media_region.h shadowCellRegion): the others
+    // are never read this frame.
+    int depth = region.hi.z - region.lo.z;
+    int k = id.z / depth;
+    ivec3 cell = ivec3(id.xy, id.z - k * depth) + region.lo.xyz;
+    if (cell.x >= cells.x || cell.y >= cells.y || k >= lightClusters[layers]) return;
     int light = lightClusters[layers + 1 + k];
-    ivec3 cell = ivec3(id.xy, id.z - k * cells.z);
     ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
     LightSample ls = evalLight(lights[light], p);

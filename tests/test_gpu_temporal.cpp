@@ -235,3 +235,68 @@ TEST(GpuTemporal, RegionEqualsTheWholeGridAndTheHistoryOfAMovedVolumeDoesNotLing
         EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
     }
 }
+
+// The shadow volume pass computes only the cells some reader needs (core/media_region.h
+// shadowCellRegion). The region renderer fills its fog transmittance volume with NaN before every
+// frame (GpuOptions::poisonShadowVolume), so a light pass reading a cell not written this frame would
+// get a NaN source, or take the exact fallback where the whole grid's blend was trusted: either way its
+// froxel volumes and image would differ from the whole-grid renderer's (froxelRegions off: every cell
+// of every listed layer written). With a sun and the two local lights, at high and low (reductions 2
+// and 4), a box resting, moved to the other side, partly off screen, and orbited: byte-identical.
+TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
+    GpuOptions options;
+    options.validation = true;
+    options.poisonShadowVolume = true;
+    auto region = GpuRenderer::create(options);
+    ASSERT_TRUE(region.ok()) << region.error().message;
+    options.froxelRegions = false;
+    options.poisonShadowVolume = false;
+    auto whole = GpuRenderer::create(options);
+    ASSERT_TRUE(whole.ok()) << whole.error().message;
+
+    auto finite = [](const std::vector<glm::vec4>& v) {
+        return std::all_of(v.begin(), v.end(), [](const glm::vec4& x) {
+            return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(x.w);
+        });
+    };
+    for (Quality q : {Quality::High, Quality::Low}) {
+        RenderRequest req;
+        req.width = 160;
+        req.height = 90;
+        req.quality = q;
+        req.history = HistoryMode::Continue;
+        const std::vector<glm::vec3> places = {{-2.6f, 1.2f, -1.0f}, {-2.6f, 1.2f, -1.0f}, {2.6f, 1.2f, 0.0f},
+                                               {5.2f, 0.8f, 1.0f}, {0.0f, 1.5f, -6.0f}};
+        for (size_t n = 0; n < places.size() + 1; ++n) {
+            Scene s = regionScene(places[std::min(n, places.size() - 1)]);
+            Light sun = makeLight(LightType::Directional);
+            sun.direction = glm::normalize(glm::vec3(0.5f, -0.8f, -0.3f));
+            sun.intensity = 2.0f;
+            s.lights.push_back(sun);
+            if (n == places.size()) s.camera = orbitCamera(s.camera, 12.0f);
+            const std::string what = std::string(q == Quality::High ? "high" : "low") + " frame " + std::to_string(n);
+            auto g = region.value()->render(s, req, true);
+            ASSERT_TRUE(g.ok()) << g.error().message;
+            auto w = whole.value()->render(s, req, true);
+            ASSERT_TRUE(w.ok()) << w.error().message;
+            const FroxelVolumes& gv = g.value().volumes;
+            const FroxelVolumes& wv = w.value().volumes;
+            EXPECT_TRUE(finite(gv.source)) << what;
+            EXPECT_TRUE(sameBytes(gv.source, wv.source)) << what;
+            EXPECT_TRUE(sameBytes(gv.integratedScattering, wv.integratedScattering)) << what;
+            const Image& gi = g.value().image;
+            const Image& wi = w.value().image;
+            ASSERT_EQ(gi.pixels.size(), wi.pixels.size());
+            EXPECT_EQ(std::memcmp(gi.pixels.data(), wi.pixels.data(), gi.pixels.size() * sizeof(glm::vec3)), 0) << what;
+            // The pass did skip cells: the region is a small part of the volume, and the box is lit.
+            const FroxelRegion cells = shadowCellRegion(mediaFroxelRegion(compileScene(s), gv.frame), gv.frame, true);
+            const glm::ivec3 all = shd::shadowVolumeDims(gv.dims, gv.frame.shadowReduction);
+            EXPECT_LT(cells.froxels() * 3, int64_t(all.x) * all.y * all.z) << what;
+            EXPECT_GT(g.value().litFroxels, 0u) << what;
+        }
+    }
+    for (auto* r : {region.value().get(), whole.value().get()}) {
+        const std::vector<std::string> messages = r->validationMessages();
+        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+    }
+}

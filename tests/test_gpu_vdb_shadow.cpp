@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "core/compile.h"
+#include "core/media_region.h"
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu_test_support.h"
@@ -151,4 +153,52 @@ TEST_F(GpuVdbShadow, GafferSmokeShadowsMatchCpu) {
     std::printf("[gpu vdb culling] on vs off: image %.3g, sigma_t %.3g\n", err, mediaErr);
     EXPECT_LT(err, 1e-6);
     EXPECT_LT(mediaErr, 1e-6);
+}
+
+// The shadow volume pass computes only the cells some reader needs (core/media_region.h
+// shadowCellRegion): around the block's froxels for the light pass, and the whole volume once the
+// ground reads the vdb layer. A renderer that fills its volume with NaN before every frame
+// (GpuOptions::poisonShadowVolume) must give the same froxel volumes and image, byte for byte, as one
+// over the whole grid, with and without the ground (without it the pass did skip cells).
+TEST(GpuVdbShadowRegion, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
+    test::TempDir dir("gpu_vdb_shadow", "region");
+    GpuOptions options;
+    options.validation = true;
+    options.poisonShadowVolume = true;
+    auto region = GpuRenderer::create(options);
+    ASSERT_TRUE(region.ok()) << region.error().message;
+    options.froxelRegions = false;
+    options.poisonShadowVolume = false;
+    auto whole = GpuRenderer::create(options);
+    ASSERT_TRUE(whole.ok()) << whole.error().message;
+    Scene scene = blockScene(bumpyBlock(dir.path));
+    scene.volumes.pop_back();  // no unbounded haze: the media region is the block's
+    for (bool ground : {true, false}) {
+        if (!ground) scene.geometry.clear();
+        RenderRequest request;
+        request.width = 160;
+        request.height = 90;
+        request.quality = Quality::High;
+        auto g = region.value()->render(scene, request, true);
+        ASSERT_TRUE(g.ok()) << g.error().message;
+        auto w = whole.value()->render(scene, request, true);
+        ASSERT_TRUE(w.ok()) << w.error().message;
+        const FroxelVolumes& gv = g.value().volumes;
+        const FroxelVolumes& wv = w.value().volumes;
+        ASSERT_EQ(gv.source.size(), wv.source.size());
+        EXPECT_EQ(std::memcmp(gv.source.data(), wv.source.data(), gv.source.size() * sizeof(glm::vec4)), 0) << ground;
+        const Image& gi = g.value().image;
+        const Image& wi = w.value().image;
+        ASSERT_EQ(gi.pixels.size(), wi.pixels.size());
+        EXPECT_EQ(std::memcmp(gi.pixels.data(), wi.pixels.data(), gi.pixels.size() * sizeof(glm::vec3)), 0) << ground;
+        EXPECT_GT(g.value().litFroxels, 0u);
+        const FroxelRegion cells = shadowCellRegion(mediaFroxelRegion(compileScene(scene), gv.frame), gv.frame, ground);
+        const glm::ivec3 all = shd::shadowVolumeDims(gv.dims, gv.frame.shadowReduction);
+        if (ground) EXPECT_EQ(cells.froxels(), int64_t(all.x) * all.y * all.z);
+        else EXPECT_LT(cells.froxels() * 3, int64_t(all.x) * all.y * all.z);
+    }
+    for (auto* r : {region.value().get(), whole.value().get()}) {
+        const std::vector<std::string> messages = r->validationMessages();
+        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+    }
 }

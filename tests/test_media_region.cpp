@@ -10,6 +10,7 @@
 #include "core/render.h"
 #include "shaders/shared/froxel.h"
 #include "shaders/shared/media.h"
+#include "shaders/shared/shadow_volume.h"
 
 using namespace brume;
 using glm::vec3;
@@ -159,4 +160,59 @@ TEST(MediaRegion, VolumesOutOfReachAddNothingToTheFroxels) {
     const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
     const CompiledScene hc = compileScene(h);
     EXPECT_TRUE(froxelVolumesInReach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
+}
+
+// The shadow volume pass computes only shadowCellRegion's cells: every cell the light pass's lookup
+// (shd::shadowLookup, its lower and upper corners) takes at a froxel of the media region (where every
+// froxel with media lies, HoldsEveryFroxelWhoseSampleIsInsideAVolume) is in it, at the presets'
+// reductions and at 3; the region follows the content (a small box: a small part of the volume; none
+// without media); and surfaces, which read the vdb layers anywhere, get the whole volume when vdb
+// shadows are on.
+TEST(MediaRegion, ShadowCellsHoldEveryCellTheLightPassReads) {
+    const std::vector<Volume> boxes = {
+        test::boxFog({0.0f, 1.0f, 0.0f}, {0.8f, 0.8f, 0.8f}, 0.1f, 0.5f, 0.0f),      // small, in view
+        test::boxFog({4.0f, 0.5f, 2.0f}, {3.0f, 1.0f, 1.0f}, 0.0f, 0.5f, 0.0f),      // partly off screen
+        test::boxFog({0.0f, 1.0f, -40.0f}, {4.0f, 4.0f, 30.0f}, 0.0f, 0.5f, 0.0f),   // past the froxel far
+        test::boxFog({0.0f, 1.0f, 0.0f}, {60.0f, 30.0f, 60.0f}, 0.0f, 0.5f, 0.0f),   // larger than the view
+    };
+    int checked = 0;
+    for (size_t b = 0; b < boxes.size(); ++b) {
+        Scene s = test::sceneWithTestView();
+        s.volumes = {boxes[b]};
+        const CompiledScene cs = compileScene(s);
+        for (int r : {1, 2, 3, 4}) {
+            shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
+            f.shadowReduction = r;
+            const glm::ivec3 dims(f.froxelDims);
+            const glm::ivec3 cells = shd::shadowVolumeDims(dims, r);
+            const FroxelRegion media = mediaFroxelRegion(cs, f);
+            ASSERT_FALSE(media.empty()) << "box " << b;
+            const FroxelRegion c = shadowCellRegion(media, f, /*surfaces=*/true);  // no vdb shadows: surfaces read nothing
+            ASSERT_TRUE(regionContains(FroxelRegion{glm::ivec3(0), cells}, c)) << "box " << b << " r " << r;
+            for (int z = media.lo.z; z < media.hi.z; ++z)
+                for (int y = media.lo.y; y < media.hi.y; ++y)
+                    for (int x = media.lo.x; x < media.hi.x; ++x) {
+                        const shd::ShadowLookup k = shd::shadowLookup({x, y, z}, dims, r);
+                        ASSERT_EQ(k.cells, cells);
+                        ASSERT_TRUE(inRegion(c, k.cell) && inRegion(c, k.upper))
+                            << "box " << b << " r " << r << " froxel " << x << " " << y << " " << z;
+                        ++checked;
+                    }
+            if (b == 0) EXPECT_LT(c.froxels() * 10, int64_t(cells.x) * cells.y * cells.z) << "r " << r;
+            if (b == 3) EXPECT_EQ(glm::ivec2(c.hi - c.lo), glm::ivec2(cells)) << "r " << r;  // the whole view
+        }
+    }
+    EXPECT_GT(checked, 0);
+
+    Scene s = test::sceneWithTestView();
+    s.volumes = {test::boxFog({0.0f, 1.0f, 20.0f}, {2.0f, 2.0f, 2.0f}, 0.1f, 0.5f, 0.0f)};  // behind the camera
+    CompiledScene cs = compileScene(s);
+    shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
+    f.shadowReduction = 2;
+    EXPECT_TRUE(shadowCellRegion(mediaFroxelRegion(cs, f), f, true).empty());
+    f.vdbShadowSamples = 2;  // surfaces read the vdb layers anywhere
+    EXPECT_TRUE(shadowCellRegion(mediaFroxelRegion(cs, f), f, false).empty());
+    const FroxelRegion all = shadowCellRegion(mediaFroxelRegion(cs, f), f, true);
+    EXPECT_EQ(all.lo, glm::ivec3(0));
+    EXPECT_EQ(all.hi, shd::shadowVolumeDims(glm::ivec3(f.froxelDims), 2));
 }
