@@ -56,9 +56,10 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, I::sourceImage, I::mediaExtinction},
      {I::integratedScattering, I::integratedTransmittance}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
-    // (shared/distant_table.h); the composite interpolates it.
+    // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
+    // the composite interpolates it.
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters},
+     {B::frame, B::volumes, B::lights, B::lightClusters, I::sceneDepth},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,

@@ -4,6 +4,7 @@
 // per step) and the ambient. composite.comp interpolates it per pixel.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "distant_table.h"
@@ -39,6 +40,26 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
     return accumulateDistant(a, seg);
 }
 
+// How many of corner c's n entries the composite can read: its pixels are those whose bilinear
+// lookup (distantTableLookup) takes this corner, [8 (c - 1), 8 c + 7] in x and y; one reads entries
+// j - 1 and j for its depth's j, and nothing at or before the froxel far. The entries past the
+// deepest pixel's are left unwritten: at `low` (froxel far 48 m, camera far 100 m: 8 entries) most
+// of the default scene's corners see only ground and walls within the froxels. The depth scan costs
+// 256 loads per corner, so it runs only where more than DISTANT_TABLE_SCAN_FROM entries are at
+// stake (a uniform branch, skipped by all lanes alike): at `high` the table has one entry.
+const int DISTANT_TABLE_SCAN_FROM = 2;
+int distantTableEntriesRead(ivec2 c, int n) {
+    if (n <= DISTANT_TABLE_SCAN_FROM) return n;
+    ivec2 first = max((c - 1) * DISTANT_TILE_PX, ivec2(0));
+    ivec2 last = min(c * DISTANT_TILE_PX + (DISTANT_TILE_PX - 1), frame.counts.xy - 1);
+    float deepest = 0.0f;
+    for (int y = first.y; y <= last.y; ++y)
+        for (int x = first.x; x <= last.x; ++x) deepest = max(deepest, imageLoad(sceneDepth, ivec2(x, y)).r);
+    if (!(deepest > frame.froxelRange.y)) return 0;
+    // One entry more than the deepest pixel's: the lookup's log and ceil need not match bit for bit.
+    return min(distantTableLookup(vec2(0.0f), deepest, frame, n).entry + 1, n);
+}
+
 void main() {
     // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; nothing to tabulate.
     if (SPEC_DISTANT_FOG == 0) return;
@@ -46,11 +67,12 @@ void main() {
     ivec2 c = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(c, corners))) return;
     int n = distantTableEntries(frame);
+    int needed = distantTableEntriesRead(c, n);
     vec3 viewRay = viewRayFromPixel(vec2(c * DISTANT_TILE_PX), frame);
     float rayPerDepth = length(viewRay);
     vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
     Accumulated a = emptyAccumulated();
-    for (int j = 1; j <= n; ++j) {
+    for (int j = 1; j <= needed; ++j) {
         a = accumulateDistantPiece(a, dir, distantTableDepth(frame, j - 1, n) * rayPerDepth,
                                    distantTableDepth(frame, j, n) * rayPerDepth);
         int index = distantTableIndex(corners, c, j);

@@ -147,22 +147,29 @@ struct GlowParams {
 
 // Pixels (x0, y0, x1, y1), inclusive, clamped to the image, outside which no pixel centre's ray meets
 // light l's glow ball (lightGlowRay's radius is 0 there); x1 < x0 when none can. Conservative: the
-// ball's view-space bounding box projected through its corners (x / depth is monotonic in each of x
-// and depth), one pixel of margin; the whole image when the box reaches behind the camera near.
+// ball's exact extent in x / depth and y / depth (its tangent planes through the camera), one pixel
+// of margin; the whole image when the ball reaches behind the camera near.
 BRUME_FUNC ivec4 lightGlowScreenRect(LightData l, FrameUniforms f) {
     ivec4 none = ivec4(0, 0, -1, -1);
     ivec4 all = ivec4(0, 0, f.counts.x - 1, f.counts.y - 1);
     float radius = lightGlowRadius(l, f);
     if (radius <= 0.0f) return none;
     vec3 c = vec3(f.viewFromWorld * vec4(vec3(l.positionRange), 1.0f));
-    float dNear = -c.z - radius;
-    float dFar = -c.z + radius;
-    if (!(dNear > 0.5f * f.projection.z)) return all;
-    // Pixel coordinate of view-space slope s = x / depth (froxel.h viewRayFromPixel inverted).
-    float sxLo = min((c.x - radius) / dNear, (c.x - radius) / dFar);
-    float sxHi = max((c.x + radius) / dNear, (c.x + radius) / dFar);
-    float syLo = min((c.y - radius) / dNear, (c.y - radius) / dFar);
-    float syHi = max((c.y + radius) / dNear, (c.y + radius) / dFar);
+    float d = -c.z;
+    if (!(d - radius > 0.5f * f.projection.z)) return all;
+    // The slopes s = x / depth of the two planes through the camera tangent to the ball, from
+    // (x - s depth)^2 = R^2 (1 + s^2) at the ball's centre: s = (x d +- R sqrt(x^2 + d^2 - R^2)) /
+    // (d^2 - R^2), d > R here; the same for y. Tighter than the ball's bounding box projected
+    // through its corners (its near face's corners stand out by d / (d - R) and more off-centre):
+    // at `low` the radius is about a seventh of the depth.
+    float d2R2 = d * d - radius * radius;
+    float rootX = radius * sqrt(c.x * c.x + d2R2);
+    float rootY = radius * sqrt(c.y * c.y + d2R2);
+    float sxLo = (c.x * d - rootX) / d2R2;
+    float sxHi = (c.x * d + rootX) / d2R2;
+    float syLo = (c.y * d - rootY) / d2R2;
+    float syHi = (c.y * d + rootY) / d2R2;
+    // Pixel coordinate of view-space slope s (froxel.h viewRayFromPixel inverted).
     float w = float(f.counts.x);
     float h = float(f.counts.y);
     float px0 = (sxLo / f.projection.x + 1.0f) * 0.5f * w;
