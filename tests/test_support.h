@@ -16,16 +16,16 @@ namespace brume::test {
 
 // Whether this build has the GPU renderer (CMake option BRUME_BUILD_GPU; the sanitized build has
 // not). Tests of the command line's options render with the build's default renderer: the GPU's,
-// or --cpu without it; tests of the GPU renderer itself skip, saying why.
-#ifndef BRUME_TEST_GPU_BUILT
-#error "tests/CMakeLists.txt defines BRUME_TEST_GPU_BUILT"
-#endif
+// or --cpu without it; tests of the GPU renderer itself skip, saying why. Defined for the test
+// programs (tests/CMakeLists.txt brume_test), not for the benchmarks that share this header.
+#ifdef BRUME_TEST_GPU_BUILT
 inline constexpr bool kGpuBuilt = BRUME_TEST_GPU_BUILT != 0;
 inline const char* defaultRendererFlag() { return kGpuBuilt ? "" : " --cpu"; }
 #define BRUME_REQUIRE_GPU_BUILD()                                                                  \
     do {                                                                                           \
         if (!::brume::test::kGpuBuilt) GTEST_SKIP() << "built without the GPU renderer (BRUME_BUILD_GPU=OFF)"; \
     } while (0)
+#endif
 
 // A fresh, empty folder per test, unique per process (other build folders may run the same test
 // at the same time), removed at the end of the test.
