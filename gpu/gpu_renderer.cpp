@@ -17,6 +17,7 @@
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/glow.h"
 #include "shaders/shared/local_shadow.h"
 #include "vk_check.h"
 
@@ -193,6 +194,15 @@ std::pair<glm::ivec2, glm::ivec2> compositePixels(const FroxelRegion& t, glm::iv
     return {lo, hi};
 }
 
+// Each light's glow radius this frame (shared/glow.h lightGlowRadius: a pow, a matrix product and a
+// square root per light) in the uploaded LightData's spot.z, which compileLight leaves 0: the light
+// passes read it there instead of evaluating it for every froxel and listed light (light_body.glsl
+// lightFroxelSample). The same function and value as the CPU froxel renderer's.
+void writeLightGlowRadii(void* mapped, const std::vector<shd::LightData>& lights, const shd::FrameUniforms& frame) {
+    auto* uploaded = static_cast<shd::LightData*>(mapped);
+    for (size_t i = 0; i < lights.size(); ++i) uploaded[i].spot.z = shd::lightGlowRadius(lights[i], frame);
+}
+
 }  // namespace
 
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
@@ -276,6 +286,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         const TemporalFrame t = beginTemporalFrame(s_->temporalState, scene, sceneKey, mode);
         mode = HistoryMode::Continue;
         frame = makeFrameUniforms(scene, cs, request.width, request.height, fs, t.jitter);
+        writeLightGlowRadii(r[BufferId::lights].mapped, cs.lights, frame);
         applyShadowSettings(frame, request);  // as renderFroxelCpu
         applySunShadowSettings(frame, cs);
         applyVdbShadowSettings(frame, cs, request);

@@ -36,6 +36,18 @@ float lightMapVisibility(int i, vec3 p, float sun) {
     return (i == frame.sunShadowLight - 1 ? sun : 1.0f) * localShadowVisibility(i, p);
 }
 
+// glow.h evalLightFroxel with the light's glow radius this frame read from l.spot.z, where the GPU
+// renderer writes lightGlowRadius(l, frame) once per frame (gpu_renderer.cpp writeLightGlowRadii):
+// the radius is the same for every froxel, and its pow, matrix product and square root cost every
+// (froxel, listed light) pair on lavapipe. The same steps as evalLightFroxel after the radius.
+LightSample lightFroxelSample(LightData l, vec3 p, float nearest) {
+    float glow = l.spot.z;
+    LightSample s = evalLightNear(l, p, glow > 0.0f ? LIGHT_MIN_DISTANCE : nearest);
+    float u2 = (s.distance * s.distance) / (glow * glow);
+    if (glow > 0.0f && u2 < 1.0f) s.irradiance *= u2 * (2.0f - u2);  // 1 - h
+    return s;
+}
+
 #ifdef BRUME_LIGHT_EXACT
 // fog_shadow.glsl froxelFogTransmittance, with the corners of shadowCorners.
 vec3 exactFogTransmittance(int light, ShadowLookup k, ShadowCorners c, vec3 p, vec3 toLight, float distance) {
@@ -100,7 +112,7 @@ void main() {
     int count = all ? frame.counts.w : lightClusters[record];
     for (int k = 0; k < count; ++k) {
         int i = all ? k : lightClusters[record + 1 + k];
-        LightSample ls = evalLightFroxel(lights[i], p, nearest, frame);
+        LightSample ls = lightFroxelSample(lights[i], p, nearest);
         vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, phase);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;

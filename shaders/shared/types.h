@@ -70,7 +70,8 @@ struct LightData {
     vec4 direction;       // xyz: unit direction the light travels (directional, spot)
     vec3 intensity;       // color * intensity (W/m^2 for directional, W/sr for point and spot)
     float fogScale;       // fog_scale: the light's in-scattering in fog is multiplied by it
-    vec4 spot;            // x: cos(outer angle); y: cos(inner angle)
+    vec4 spot;            // x: cos(outer angle); y: cos(inner angle); z: 0 as compiled; the GPU renderer
+                          // writes the glow radius of the frame there (gpu_renderer.cpp writeLightGlowRadii)
     ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1); z: point/spot: local shadow map slot + 1,
                           // 0 = none (local_shadow.h)
 };
