@@ -40,4 +40,32 @@ protected:
     std::unique_ptr<gpu::GpuRenderer> renderer;
 };
 
+// The shadow volume region tests' pair: a renderer over the froxel regions whose fog transmittance
+// volume is filled with NaN before every frame (GpuOptions::poisonShadowVolume), so that reading a
+// cell not written this frame shows, and one over the whole grid; both validated. Stops the test on
+// an error (check HasFatalFailure()).
+struct PoisonedRegionAndWholeGrid {
+    std::unique_ptr<gpu::GpuRenderer> region, whole;
+
+    void create() {
+        gpu::GpuOptions options;
+        options.validation = true;
+        options.poisonShadowVolume = true;
+        auto r = gpu::GpuRenderer::create(options);
+        ASSERT_TRUE(r.ok()) << r.error().message;
+        region = std::move(r.value());
+        options.froxelRegions = false;
+        options.poisonShadowVolume = false;
+        auto w = gpu::GpuRenderer::create(options);
+        ASSERT_TRUE(w.ok()) << w.error().message;
+        whole = std::move(w.value());
+    }
+    void expectNoValidationMessages() const {
+        for (const gpu::GpuRenderer* r : {region.get(), whole.get()}) {
+            const std::vector<std::string> messages = r->validationMessages();
+            EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+        }
+    }
+};
+
 }  // namespace brume::test

@@ -19,6 +19,7 @@
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu_test_support.h"
+#include "ground_shadow.h"
 
 using namespace brume;
 using namespace brume::gpu;
@@ -343,26 +344,7 @@ TEST_F(GpuTest, DenseBlockLetsNoSunOntoTheGroundBeneath) {
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
     const Image& img = gpu.value().image;
     const FroxelResult cpu = renderFroxelCpu(s, request);
-    const GeometrySet geometry(s.geometry);
-    const shd::FrameUniforms& f = cpu.volumes.frame;
-    int dark = 0, sunlit = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const glm::vec3 viewRay = shd::viewRayFromPixel(glm::vec2(x, y) + glm::vec2(0.5f), f);
-            const glm::vec3 dir = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(viewRay, 0.0f)));
-            const SurfaceHit hit = geometry.intersect(Ray{s.camera.position, dir}, 30.0f);
-            if (!hit.hit()) continue;
-            const glm::vec3 q = hit.position;
-            if (std::abs(q.x) < 1.4f && std::abs(q.z) < 1.4f) {
-                ++dark;
-                EXPECT_LT(img.at(x, y).x, 1e-6f) << "sun leaked onto the ground at pixel " << x << "," << y;
-            } else if (std::abs(q.x) > 1.6f || std::abs(q.z) > 1.6f) {
-                ++sunlit;
-                EXPECT_GT(img.at(x, y).x, 0.1f) << "no sun on the ground at pixel " << x << "," << y;
-            }
-        }
-    EXPECT_GT(dark, 30);
-    EXPECT_GT(sunlit, 50);
+    test::expectNoSunBeneathTheBlock(img, s, cpu.volumes.frame);
     EXPECT_LT(relativeMeanAbsError(img, cpu.image), kTolerance);
 }
 

@@ -244,15 +244,9 @@ TEST(GpuTemporal, RegionEqualsTheWholeGridAndTheHistoryOfAMovedVolumeDoesNotLing
 // of every listed layer written). With a sun and the two local lights, at high and low (reductions 2
 // and 4), a box resting, moved to the other side, partly off screen, and orbited: byte-identical.
 TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
-    GpuOptions options;
-    options.validation = true;
-    options.poisonShadowVolume = true;
-    auto region = GpuRenderer::create(options);
-    ASSERT_TRUE(region.ok()) << region.error().message;
-    options.froxelRegions = false;
-    options.poisonShadowVolume = false;
-    auto whole = GpuRenderer::create(options);
-    ASSERT_TRUE(whole.ok()) << whole.error().message;
+    test::PoisonedRegionAndWholeGrid pair;
+    pair.create();
+    if (HasFatalFailure()) return;
 
     auto finite = [](const std::vector<glm::vec4>& v) {
         return std::all_of(v.begin(), v.end(), [](const glm::vec4& x) {
@@ -275,9 +269,9 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
             s.lights.push_back(sun);
             if (n == places.size()) s.camera = orbitCamera(s.camera, 12.0f);
             const std::string what = std::string(q == Quality::High ? "high" : "low") + " frame " + std::to_string(n);
-            auto g = region.value()->render(s, req, true);
+            auto g = pair.region->render(s, req, true);
             ASSERT_TRUE(g.ok()) << g.error().message;
-            auto w = whole.value()->render(s, req, true);
+            auto w = pair.whole->render(s, req, true);
             ASSERT_TRUE(w.ok()) << w.error().message;
             const FroxelVolumes& gv = g.value().volumes;
             const FroxelVolumes& wv = w.value().volumes;
@@ -295,8 +289,5 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
             EXPECT_GT(g.value().litFroxels, 0u) << what;
         }
     }
-    for (auto* r : {region.value().get(), whole.value().get()}) {
-        const std::vector<std::string> messages = r->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
+    pair.expectNoValidationMessages();
 }

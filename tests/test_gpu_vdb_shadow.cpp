@@ -162,15 +162,9 @@ TEST_F(GpuVdbShadow, GafferSmokeShadowsMatchCpu) {
 // over the whole grid, with and without the ground (without it the pass did skip cells).
 TEST(GpuVdbShadowRegion, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
     test::TempDir dir("gpu_vdb_shadow", "region");
-    GpuOptions options;
-    options.validation = true;
-    options.poisonShadowVolume = true;
-    auto region = GpuRenderer::create(options);
-    ASSERT_TRUE(region.ok()) << region.error().message;
-    options.froxelRegions = false;
-    options.poisonShadowVolume = false;
-    auto whole = GpuRenderer::create(options);
-    ASSERT_TRUE(whole.ok()) << whole.error().message;
+    test::PoisonedRegionAndWholeGrid pair;
+    pair.create();
+    if (HasFatalFailure()) return;
     Scene scene = blockScene(bumpyBlock(dir.path));
     scene.volumes.pop_back();  // no unbounded haze: the media region is the block's
     for (bool ground : {true, false}) {
@@ -179,9 +173,9 @@ TEST(GpuVdbShadowRegion, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
         request.width = 160;
         request.height = 90;
         request.quality = Quality::High;
-        auto g = region.value()->render(scene, request, true);
+        auto g = pair.region->render(scene, request, true);
         ASSERT_TRUE(g.ok()) << g.error().message;
-        auto w = whole.value()->render(scene, request, true);
+        auto w = pair.whole->render(scene, request, true);
         ASSERT_TRUE(w.ok()) << w.error().message;
         const FroxelVolumes& gv = g.value().volumes;
         const FroxelVolumes& wv = w.value().volumes;
@@ -197,8 +191,5 @@ TEST(GpuVdbShadowRegion, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
         if (ground) EXPECT_EQ(cells.froxels(), int64_t(all.x) * all.y * all.z);
         else EXPECT_LT(cells.froxels() * 3, int64_t(all.x) * all.y * all.z);
     }
-    for (auto* r : {region.value().get(), whole.value().get()}) {
-        const std::vector<std::string> messages = r->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
+    pair.expectNoValidationMessages();
 }

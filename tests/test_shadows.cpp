@@ -3,6 +3,7 @@
 // against the reference: the fog's shadow on the ground, and a dense block that must not leak light.
 #include <gtest/gtest.h>
 
+#include "ground_shadow.h"
 #include "test_support.h"
 
 #include <cmath>
@@ -195,26 +196,7 @@ TEST(FogShadowDenseBlock, NoLightLeaksThrough) {
     // The ground beneath the block is black (no ambient, no haze in the way); beside it, sunlit.
     s.volumes = {block};
     const Image img = renderFroxelCpu(s, request(96, 54, Quality::High)).image;
-    const GeometrySet geometry(s.geometry);
-    const shd::FrameUniforms& f = v.frame;
-    int dark = 0, sunlit = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-            const glm::vec3 viewRay = shd::viewRayFromPixel(glm::vec2(x, y) + glm::vec2(0.5f), f);
-            const glm::vec3 dir = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(viewRay, 0.0f)));
-            const SurfaceHit hit = geometry.intersect(Ray{s.camera.position, dir}, 30.0f);  // inside camera.far
-            if (!hit.hit()) continue;
-            const glm::vec3 q = hit.position;
-            if (std::abs(q.x) < 1.4f && std::abs(q.z) < 1.4f) {
-                ++dark;
-                EXPECT_LT(img.at(x, y).x, 1e-6f) << "sun leaked onto the ground at pixel " << x << "," << y;
-            } else if (std::abs(q.x) > 1.6f || std::abs(q.z) > 1.6f) {
-                ++sunlit;
-                EXPECT_GT(img.at(x, y).x, 0.1f);
-            }
-        }
-    EXPECT_GT(dark, 30);
-    EXPECT_GT(sunlit, 50);
+    test::expectNoSunBeneathTheBlock(img, s, v.frame);
 }
 
 // With fog shadows the froxel renderer approaches the reference: on the box-over-ground scene the
