@@ -117,13 +117,13 @@ bool mayIntersect(const std::vector<glm::vec3>& points, const std::vector<glm::v
 
 }  // namespace
 
-std::vector<bool> froxelVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame) {
-    // The froxel frustum: sample points have froxel coordinates in [0, dims] on each axis.
-    const glm::vec3 dims(glm::ivec3(frame.froxelDims));
-    std::vector<glm::vec3> frustum;
-    for (int c = 0; c < 8; ++c)
-        frustum.push_back(shd::worldFromFroxelCoord(
-            glm::vec3((c & 1) ? dims.x : 0.0f, (c & 2) ? dims.y : 0.0f, (c & 4) ? dims.z : 0.0f), frame));
+namespace {
+
+// Per volume: whether its bounds may meet the convex set `frustum` (8 corners: near x0y0, x1y0, x0y1,
+// x1y1, then far the same) or a shadow ray from a point of it toward a light whose fog shadow is
+// evaluated. Unbounded volumes: true.
+std::vector<bool> volumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame,
+                                 const std::vector<glm::vec3>& frustum) {
     // Its edge directions: along x, along y, and the four from the near to the far corners.
     std::vector<glm::vec3> edges{frustum[1] - frustum[0], frustum[2] - frustum[0]};
     for (int c = 0; c < 4; ++c) edges.push_back(frustum[static_cast<size_t>(c + 4)] - frustum[static_cast<size_t>(c)]);
@@ -149,6 +149,31 @@ std::vector<bool> froxelVolumesInReach(const CompiledScene& cs, const shd::Frame
         inReach[i] = any;
     }
     return inReach;
+}
+
+}  // namespace
+
+std::vector<bool> froxelVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame) {
+    // The froxel frustum: sample points have froxel coordinates in [0, dims] on each axis.
+    const glm::vec3 dims(glm::ivec3(frame.froxelDims));
+    std::vector<glm::vec3> frustum;
+    for (int c = 0; c < 8; ++c)
+        frustum.push_back(shd::worldFromFroxelCoord(
+            glm::vec3((c & 1) ? dims.x : 0.0f, (c & 2) ? dims.y : 0.0f, (c & 4) ? dims.z : 0.0f), frame));
+    return volumesInReach(cs, frame, frustum);
+}
+
+std::vector<bool> surfaceVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame) {
+    // The view frustum from the camera near to the camera far, where the rasterizer keeps surfaces:
+    // the image's corner rays (shd::viewRayFromPixel, view depth 1) at both depths.
+    const glm::vec2 size(glm::ivec2(frame.counts));
+    std::vector<glm::vec3> frustum;
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 ray = shd::viewRayFromPixel(glm::vec2((c & 1) ? size.x : 0.0f, (c & 2) ? size.y : 0.0f), frame);
+        const float depth = (c & 4) ? frame.projection.w : frame.projection.z;
+        frustum.push_back(glm::vec3(frame.worldFromView * glm::vec4(ray * depth, 1.0f)));
+    }
+    return volumesInReach(cs, frame, frustum);
 }
 
 }  // namespace brume

@@ -56,4 +56,11 @@ bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner);
 // density length there are exactly 0, so leaving it out changes no value. Unbounded volumes: true.
 std::vector<bool> froxelVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame);
 
+// Per volume of cs: whether it can change a surface's fog transmittance toward a light this frame
+// (geometry.frag; core: surfaceFogTransmittance), i.e. froxelVolumesInReach's test with the view
+// frustum from the camera near to the camera far, where the rasterizer keeps every shaded surface
+// point, in place of the froxel frustum. A volume behind the camera that no shadow ray from the
+// view crosses is out of reach: its optical depth along every such ray is exactly 0.
+std::vector<bool> surfaceVolumesInReach(const CompiledScene& cs, const shd::FrameUniforms& frame);
+
 }  // namespace brume

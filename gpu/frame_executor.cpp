@@ -491,7 +491,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
             case Record::ShadowCells: recordShadowCells(ctx); break;
             case Record::Composite: recordComposite(ctx); break;
             case Record::Geometry:
-                BRUME_TRY(geometry.usePipeline(*device, layout, spec, variant.shapes));
+                BRUME_TRY(geometry.usePipeline(*device, layout, surfaceSpec, variant.shapes));
                 geometry.record(ctx);
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;

@@ -23,7 +23,8 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
      {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
-    // fog's shadow and the shadow maps; sky = ambient at the camera far.
+    // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
+    // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
      {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
      {I::sceneColor, I::sceneDepth}, true},

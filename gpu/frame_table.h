@@ -208,7 +208,8 @@ struct PassDecl {
     // SpecKey): code for what the scene lacks is compiled out. Otherwise the shader's defaults.
     bool specialized = false;
     // With `specialized`: the froxel passes' key, where the volumes out of this frame's froxel reach
-    // are listed as SPEC_CULLED_VOLUME (core/media_region.h froxelVolumesInReach).
+    // are listed as SPEC_CULLED_VOLUME (core/media_region.h froxelVolumesInReach). The raster pass
+    // (geometry) always takes the key with the volumes out of the surfaces' reach culled instead.
     bool culledVolumes = false;
 };
 

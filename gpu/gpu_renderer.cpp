@@ -164,10 +164,11 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     return k;
 }
 
-// The froxel passes' key: a volume out of the froxels' reach this frame listed as SPEC_CULLED_VOLUME,
-// so its terms (exactly 0) are compiled out rather than evaluated. A scene with too many volumes for
-// the list keeps every volume.
-SpecKey froxelSpecKey(SpecKey k, const std::vector<bool>& inReach) {
+// The key of the froxel passes or of the geometry pass: a volume out of their reach this frame
+// (core/media_region.h froxelVolumesInReach, surfaceVolumesInReach) listed as SPEC_CULLED_VOLUME, so
+// its terms (exactly 0) are compiled out rather than evaluated. A scene with too many volumes for the
+// list keeps every volume.
+SpecKey culledSpecKey(SpecKey k, const std::vector<bool>& inReach) {
     if (k[SpecId::SPEC_VOLUME_COUNT] < 0) return k;
     for (size_t i = 0; i < inReach.size(); ++i) {
         if (inReach[i]) continue;
@@ -258,7 +259,8 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->spec = sceneSpecKey(cs, frame, lightReach);
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
-    s_->froxelSpec = froxelSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
+    s_->froxelSpec = culledSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
+    s_->surfaceSpec = culledSpecKey(s_->spec, surfaceVolumesInReach(cs, frame));
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h), and in

@@ -27,6 +27,7 @@ struct GpuRenderer::State {
     VariantKey variant;               // this frame's
     SpecKey spec;                     // this scene's specialization constants (passes marked specialized)
     SpecKey froxelSpec;               // spec with the volumes out of the froxels' reach culled (PassDecl::culledVolumes)
+    SpecKey surfaceSpec;              // spec with the volumes out of the surfaces' reach culled (the geometry pass)
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     std::vector<shd::GlowParams> glow;   // the glow pass's dispatches, one per glowing light in view
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)

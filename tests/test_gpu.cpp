@@ -348,6 +348,66 @@ TEST_F(GpuTest, DenseBlockLetsNoSunOntoTheGroundBeneath) {
     EXPECT_LT(relativeMeanAbsError(img, cpu.image), kTolerance);
 }
 
+// The geometry pass leaves out the volumes out of the surfaces' reach (core/media_region.h
+// surfaceVolumesInReach) and keeps the others: the dense block lifted out of the view, above it,
+// still keeps the sun off the ground beneath it; moved behind the camera, where its shadow falls out
+// of view, it leaves the image exactly as the scene without it renders.
+TEST_F(GpuTest, VolumesOutOfViewShadowTheGroundOrAddNothing) {
+    Scene s;
+    s.camera.position = {0.0f, 2.0f, 9.0f};
+    s.camera.target = {0.0f, 0.5f, 0.0f};
+    s.camera.far = 40.0f;
+    s.ambient = glm::vec3(0.0f);
+    Light overhead = makeLight(LightType::Directional);
+    overhead.direction = {0.0f, -1.0f, 0.0f};
+    overhead.intensity = 2.0f;
+    s.lights = {overhead};
+    Volume block = box();
+    block.transform.translation = {0.0f, 14.0f, 0.0f};  // above the view
+    block.transform.scale = {3.0f, 1.0f, 3.0f};
+    block.transform.rotation_deg = glm::vec3(0.0f);
+    block.edge_fade = 0.0f;
+    block.medium.scattering = glm::vec3(20.0f);
+    block.medium.absorption = glm::vec3(0.0f);
+    s.volumes = {block};
+    Geometry plane;
+    plane.type = GeometryType::Plane;
+    plane.albedo = glm::vec3(0.5f);
+    s.geometry = {plane};
+    RenderRequest request = smallRequest();
+    request.width = 96;
+    request.height = 54;
+    request.quality = Quality::High;
+    auto above = renderer->render(s, request);
+    ASSERT_TRUE(above.ok()) << above.error().message;
+    const FroxelResult cpu = renderFroxelCpu(s, request);
+    const shd::FrameUniforms& f = cpu.volumes.frame;
+    for (float x : {-1.5f, 1.5f})
+        for (float z : {-1.5f, 1.5f}) {
+            const glm::vec4 corner = f.clipFromWorld * glm::vec4(x, 13.5f, z, 1.0f);  // clip y points down
+            ASSERT_LT(corner.y, -corner.w) << "the block's underside must lie above the view";
+        }
+    test::expectNoSunBeneathTheBlock(above.value().image, s, f);
+    EXPECT_LT(relativeMeanAbsError(above.value().image, cpu.image), kTolerance);
+
+    s.volumes[0].transform.translation = {0.0f, 1.0f, 20.0f};  // behind the camera
+    auto behind = renderer->render(s, request);
+    ASSERT_TRUE(behind.ok()) << behind.error().message;
+    s.volumes.clear();
+    auto without = renderer->render(s, request);
+    ASSERT_TRUE(without.ok()) << without.error().message;
+    const Image& a = behind.value().image;
+    const Image& b = without.value().image;
+    float largest = 0.0f, brightest = 0.0f;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            largest = std::max(largest, glm::length(a.at(x, y) - b.at(x, y)));
+            brightest = std::max(brightest, b.at(x, y).x);
+        }
+    EXPECT_EQ(largest, 0.0f);
+    EXPECT_GT(brightest, 0.1f) << "the sunlit ground is in view";
+}
+
 // Ellipsoid and cylinder volumes and height_falloff (issue 15): the box kind's shape selector and
 // the sampled fog shadow integral (shared/shadows.h shapeDensityLength), froxels and ground alike.
 TEST_F(GpuTest, EllipsoidCylinderAndHeightFalloffMatchCpu) {

@@ -149,8 +149,9 @@ TEST(MediaRegion, VolumesOutOfReachAddNothingToTheFroxels) {
             EXPECT_FALSE(t.holdsSample) << "case " << c;
             EXPECT_EQ(t.maxDepth, 0.0f) << "case " << c;
         }
-        if (!cases[c].expectCulled)  // the cases kept do reach the froxels: the check above has teeth
+        if (!cases[c].expectCulled) {  // the cases kept do reach the froxels: the check above has teeth
             EXPECT_TRUE(t.holdsSample || t.maxDepth > 0.0f) << "case " << c;
+        }
         EXPECT_EQ(!inReach[0], cases[c].expectCulled) << "case " << c << ": holds a sample " << t.holdsSample
                                                       << ", largest optical depth " << t.maxDepth;
     }
@@ -160,6 +161,88 @@ TEST(MediaRegion, VolumesOutOfReachAddNothingToTheFroxels) {
     const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
     const CompiledScene hc = compileScene(h);
     EXPECT_TRUE(froxelVolumesInReach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
+}
+
+namespace {
+
+// Volume 0's largest optical depth toward each light whose fog shadow is evaluated, and whether its
+// bounds hold a point, over a sweep of the view frustum from the camera near to the camera far
+// (33 x 19 rays through the image, 40 depths), where the geometry pass can shade a surface.
+VolumeTerms surfaceTerms(const CompiledScene& cs, const shd::FrameUniforms& f) {
+    VolumeTerms t;
+    const float zNear = f.projection.z, zFar = f.projection.w;
+    for (int d = 0; d < 40; ++d) {
+        const float z = zNear * std::pow(zFar / zNear, float(d) / 39.0f);
+        for (int y = 0; y <= 18; ++y)
+            for (int x = 0; x <= 32; ++x) {
+                const glm::vec2 pixel(float(f.counts.x) * float(x) / 32.0f, float(f.counts.y) * float(y) / 18.0f);
+                const vec3 p = vec3(f.worldFromView * glm::vec4(shd::viewRayFromPixel(pixel, f) * z, 1.0f));
+                t.holdsSample = t.holdsSample || shd::insideBounds(cs.volumes[0], p);
+                for (const shd::LightData& l : cs.lights) {
+                    if (!shd::fogShadowsLight(l, f.localFogShadows)) continue;
+                    const shd::LightSample ls = shd::evalLight(l, p);
+                    const vec3 tau = shd::shadowOpticalDepth(cs.volumes[0], p, ls.toLight, ls.distance);
+                    t.maxDepth = std::max(t.maxDepth, std::max(tau.x, std::max(tau.y, tau.z)));
+                }
+            }
+    }
+    return t;
+}
+
+}  // namespace
+
+// The geometry pass leaves out a volume only when it adds exactly nothing to any surface the view
+// can hold: no point of the view frustum (camera near to camera far) in its bounds and no fog shadow
+// through it from such a point. It leaves out the offscreen bench scene's box behind the camera, and
+// keeps a box in view past the froxel far, which the froxel passes leave out.
+TEST(MediaRegion, VolumesOutOfTheSurfacesReachAddNothingToThem) {
+    struct Case {
+        vec3 boxCentre;
+        vec3 sunDirection;  // the way the light travels
+        bool expectCulled;
+    };
+    const std::vector<Case> cases = {
+        {{0.0f, 1.0f, 20.0f}, {-0.8f, -0.35f, -0.3f}, true},   // behind the camera (bench/scenes/default_offscreen_volume.json)
+        {{0.0f, 1.0f, 20.0f}, {0.0f, -0.3f, -1.0f}, false},    // behind the camera, sun shining through it
+        {{0.0f, 1.0f, -200.0f}, {0.0f, -1.0f, 0.0f}, true},    // past the camera far, sun from above
+        {{0.0f, 1.0f, -200.0f}, {0.0f, -0.2f, 1.0f}, false},   // past the camera far, low sun behind it
+        {{0.0f, 1.0f, -30.0f}, {0.0f, -1.0f, 0.0f}, false},    // in view past the froxel far
+        {{0.0f, 30.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},     // above the view, overhead sun
+        {{60.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, true},      // far to the side, overhead sun
+    };
+    int culled = 0;
+    for (size_t c = 0; c < cases.size(); ++c) {
+        Scene s = test::sceneWithTestView();
+        s.froxels.far = 20.0f;  // the froxels end well before the camera far (60 m)
+        s.volumes = {test::boxFog(cases[c].boxCentre, {3.0f, 2.4f, 3.0f}, 0.35f, 0.5f, 0.02f)};
+        Light sun = makeLight(LightType::Directional);
+        sun.direction = glm::normalize(cases[c].sunDirection);
+        s.lights = {sun, test::pointLight({1.0f, 1.0f, 0.0f}, 6.0f, 5.0f)};
+        const CompiledScene cs = compileScene(s);
+        const shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
+        const std::vector<bool> inReach = surfaceVolumesInReach(cs, f);
+        ASSERT_EQ(inReach.size(), 1u);
+        const VolumeTerms t = surfaceTerms(cs, f);
+        if (!inReach[0]) {
+            ++culled;
+            EXPECT_FALSE(t.holdsSample) << "case " << c;
+            EXPECT_EQ(t.maxDepth, 0.0f) << "case " << c;
+        }
+        if (!cases[c].expectCulled) {  // the cases kept do reach the surfaces: the check above has teeth
+            EXPECT_TRUE(t.holdsSample || t.maxDepth > 0.0f) << "case " << c;
+        }
+        EXPECT_EQ(!inReach[0], cases[c].expectCulled) << "case " << c << ": holds a point " << t.holdsSample
+                                                      << ", largest optical depth " << t.maxDepth;
+        if (c == 4) {
+            EXPECT_FALSE(froxelVolumesInReach(cs, f)[0]) << "the box past the froxel far: the two tests differ here";
+        }
+    }
+    EXPECT_GT(culled, 0);
+
+    // Unbounded fog is always in reach.
+    const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
+    const CompiledScene hc = compileScene(h);
+    EXPECT_TRUE(surfaceVolumesInReach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
 }
 
 // The shadow volume pass computes only shadowCellRegion's cells: every cell the light pass's lookup
@@ -198,8 +281,12 @@ TEST(MediaRegion, ShadowCellsHoldEveryCellTheLightPassReads) {
                             << "box " << b << " r " << r << " froxel " << x << " " << y << " " << z;
                         ++checked;
                     }
-            if (b == 0) EXPECT_LT(c.froxels() * 10, int64_t(cells.x) * cells.y * cells.z) << "r " << r;
-            if (b == 3) EXPECT_EQ(glm::ivec2(c.hi - c.lo), glm::ivec2(cells)) << "r " << r;  // the whole view
+            if (b == 0) {
+                EXPECT_LT(c.froxels() * 10, int64_t(cells.x) * cells.y * cells.z) << "r " << r;
+            }
+            if (b == 3) {
+                EXPECT_EQ(glm::ivec2(c.hi - c.lo), glm::ivec2(cells)) << "r " << r;  // the whole view
+            }
         }
     }
     EXPECT_GT(checked, 0);
