@@ -621,3 +621,56 @@ TEST(Lights, GlowScreenRectHoldsEveryPixelWhoseRayMeetsTheBall) {
     }
     EXPECT_GE(tight, 2);  // the lights well in view: a rectangle around the ball, not the image
 }
+
+// The same at the far end of the settings' ranges: camera and froxel far at 10^7 m, where the glow
+// radius grows to the light's own depth d. Lights on and beside the view axis at the depths where the
+// ball's near side d - R is 0.6, 2 and 50 times the camera near (found by bisection: R / d rises
+// toward the camera), so the rectangle's tangent slopes divide by d^2 - R^2 with d near 10^5 m.
+TEST(Lights, GlowScreenRectHoldsTheBallAtTheFarEndOfTheRanges) {
+    Scene scene;
+    scene.camera.far = 1e7f;
+    scene.froxels.far = 1e7f;
+    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::Low);
+    const int w = 160, h = 90;
+    const shd::FrameUniforms f = makeFrameUniforms(scene, compileScene(scene), w, h, fs);
+    const glm::vec3 origin = glm::vec3(f.cameraPosition);
+    const glm::vec3 forward = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)));
+    const glm::vec3 right = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(1.0f, 0.0f, 0.0f, 0.0f)));
+    const float zNear = f.projection.z;
+    Light point = makeLight(LightType::Point);
+    auto at = [&](float depth, float side) {
+        point.position = origin + forward * depth + right * (side * depth);
+        return compileLight(point);
+    };
+    for (const float gap : {0.6f, 2.0f, 50.0f})
+        for (const float side : {0.0f, 0.3f}) {
+            // d - R(d) is negative near the froxel near plane's far side of R = d and grows with d.
+            float lo = f.froxelRange.x * 1.01f, hi = 0.5f * f.froxelRange.y;
+            const auto gapAt = [&](float d) {
+                const shd::LightData l = at(d, side);
+                const float depth = -(f.viewFromWorld * glm::vec4(glm::vec3(l.positionRange), 1.0f)).z;
+                return depth - shd::lightGlowRadius(l, f);
+            };
+            ASSERT_LT(gapAt(lo), gap * zNear);
+            ASSERT_GT(gapAt(hi), gap * zNear);
+            for (int i = 0; i < 200; ++i) {
+                const float mid = 0.5f * (lo + hi);
+                (gapAt(mid) < gap * zNear ? lo : hi) = mid;
+            }
+            const shd::LightData l = at(hi, side);
+            ASSERT_GT(shd::lightGlowRadius(l, f), 1e3f) << "a ball of kilometres: the range's far end";
+            const glm::ivec4 rect = shd::lightGlowScreenRect(l, f);
+            int inside = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const glm::vec3 viewRay = shd::viewRayFromPixel(glm::vec2(x, y) + glm::vec2(0.5f), f);
+                    const glm::vec3 dir = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(viewRay, 0.0f)));
+                    if (shd::lightGlowRay(l, f, origin, dir, f.projection.w * glm::length(viewRay)).radius <= 0.0f) continue;
+                    ++inside;
+                    EXPECT_TRUE(x >= rect.x && x <= rect.z && y >= rect.y && y <= rect.w)
+                        << "gap " << gap << " side " << side << ": pixel " << x << ", " << y << " outside " << rect.x
+                        << " " << rect.y << " " << rect.z << " " << rect.w;
+                }
+            EXPECT_GT(inside, 0) << "gap " << gap << " side " << side << ": no pixel meets the ball";
+        }
+}

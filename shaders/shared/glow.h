@@ -162,7 +162,9 @@ BRUME_FUNC ivec4 lightGlowScreenRect(LightData l, FrameUniforms f) {
     // (d^2 - R^2), d > R here; the same for y. Tighter than the ball's bounding box projected
     // through its corners (its near face's corners stand out by d / (d - R) and more off-centre):
     // at `low` the radius is about a seventh of the depth.
-    float d2R2 = d * d - radius * radius;
+    // As (d - R)(d + R): d * d - R * R cancels to a few digits when R is close to d at large depths
+    // (a camera far of 10^7 m puts R = d near 10^5 m, where the squares are 2^11 apart).
+    float d2R2 = (d - radius) * (d + radius);
     float rootX = radius * sqrt(c.x * c.x + d2R2);
     float rootY = radius * sqrt(c.y * c.y + d2R2);
     float sxLo = (c.x * d - rootX) / d2R2;
