@@ -34,6 +34,10 @@ struct RenderRequest {
     int debugSlice = 0;
     bool vdbShadows = true;    // froxel renderers: vdb volumes in the fog shadows (core/vdb_shadow.h)
     bool vdbCulling = true;    // froxel renderers: skip grid walks in empty occupancy cells (core/vdb_shadow.h)
+    // GPU renderer: keep the previous frame's surfaces (the geometry and distant fog passes' output)
+    // when everything those passes read equals what they read then, as at rest in the editor, which
+    // sets it. Off by default, so that `brume bench` and `brume tradeoff` time whole frames.
+    bool reuseSurfaces = false;
     ProgressFn progress;   // optional
     // Reference renderer: once set, rows not yet started are skipped and the image is incomplete
     // (the caller, which set it, throws the image away). Lets the editor cancel a long reference.

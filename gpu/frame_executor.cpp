@@ -302,7 +302,10 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
-    if (dirty) writeDescriptorBindings(*device, bindings.set, res);
+    if (dirty) {
+        writeDescriptorBindings(*device, bindings.set, res);
+        surfacesValid = false;  // a screen image or the distant table may be new
+    }
     descriptorsStale = false;
     return {};
 }
@@ -459,6 +462,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
     for (const PassDecl& p : kPasses) {
         if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) continue;
+        if (p.when == When::SurfacesChanged && reuseSurfaces) continue;
         PassContext ctx;
         ctx.cmd = cmd;
         ctx.pass = &p;

@@ -25,7 +25,7 @@ const std::array<PassDecl, 11> kPasses{{
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
     // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
-    {"geometry", "geometry", Variant::None, Dispatch::Raster, When::Always, Record::Geometry,
+    {"geometry", "geometry", Variant::None, Dispatch::Raster, When::SurfacesChanged, Record::Geometry,
      {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
      {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
@@ -59,7 +59,7 @@ const std::array<PassDecl, 11> kPasses{{
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
     // the composite interpolates it.
-    {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::Always, Record::Dispatch,
+    {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
      {B::frame, B::volumes, B::lights, B::lightClusters, I::sceneDepth},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.

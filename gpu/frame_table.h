@@ -179,7 +179,10 @@ struct VariantKey {
 std::string variantShaderName(const char* shader, Variant v, const VariantKey& k);
 
 // Whether a pass runs this frame.
-enum class When : uint8_t { Always, DebugView };
+// SurfacesChanged: skipped when the GPU renderer keeps the previous frame's output of the pass
+// (RenderRequest::reuseSurfaces; gpu_renderer.cpp surfaceInputs): the pass reads nothing that
+// changed since, and its outputs (scene colour and depth, the distant fog table) outlive frames.
+enum class When : uint8_t { Always, DebugView, SurfacesChanged };
 
 // Pass-specific recording beyond bind + dispatch (pass_*.cpp).
 enum class Record : uint8_t {

@@ -204,6 +204,37 @@ void writeLightGlowRadii(void* mapped, const std::vector<shd::LightData>& lights
     for (size_t i = 0; i < lights.size(); ++i) uploaded[i].spot.z = shd::lightGlowRadius(lights[i], frame);
 }
 
+// Appends n bytes at p to out.
+void appendBytes(std::vector<uint8_t>& out, const void* p, size_t n) {
+    const auto* b = static_cast<const uint8_t*>(p);
+    out.insert(out.end(), b, b + n);
+}
+
+// Everything the When::SurfacesChanged passes (geometry, distant fog) read this frame, as bytes:
+// the frame's uniforms without what follows the jitter (the jitter, the temporal blend, the media
+// origin: neither pass reads them when surfaces take no vdb layer, see below), the volumes and
+// lights as uploaded, the light clusters and reach, the vertices, the shadow maps, the geometry
+// pass's specialization key and variant. Equal bytes mean equal outputs.
+std::vector<uint8_t> surfaceInputs(shd::FrameUniforms frame, const FrameResources& r, size_t volumeBytes,
+                                   size_t lightBytes, size_t clusterBytes, size_t vertexBytes, size_t sunBytes,
+                                   size_t localBytes, const SpecKey& surfaceSpec, bool shapes) {
+    frame.jitter = glm::vec4(0.0f);
+    frame.temporal = glm::vec4(0.0f);
+    frame.mediaOriginX = frame.mediaOriginY = frame.mediaOriginZ = 0;
+    std::vector<uint8_t> out;
+    out.reserve(sizeof(frame) + volumeBytes + lightBytes + clusterBytes + vertexBytes + sunBytes + localBytes + 64);
+    appendBytes(out, &frame, sizeof(frame));
+    appendBytes(out, r[BufferId::volumes].mapped, volumeBytes);
+    appendBytes(out, r[BufferId::lights].mapped, lightBytes);
+    appendBytes(out, r[BufferId::lightClusters].mapped, clusterBytes);
+    appendBytes(out, r.vertices.mapped, vertexBytes);
+    appendBytes(out, r[BufferId::sunShadowMap].mapped, sizeof(shd::SunShadowFit) + sunBytes);
+    appendBytes(out, r[BufferId::localShadowMaps].mapped, localBytes);
+    appendBytes(out, &surfaceSpec, sizeof(surfaceSpec));
+    out.push_back(shapes ? 1 : 0);
+    return out;
+}
+
 }  // namespace
 
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
@@ -306,6 +337,14 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         std::memcpy(r[BufferId::frame].mapped, &frame, sizeof(frame));
         std::memcpy(r[BufferId::previousFrame].mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);
+        // The surfaces follow the jitter only through the vdb layers of the shadow volume.
+        std::vector<uint8_t> surfaces = surfaceInputs(
+            frame, r, cs.volumes.size() * sizeof(shd::VolumeData), cs.lights.size() * sizeof(shd::LightData),
+            (clusters.records.size() + reach.size()) * sizeof(int), vertices.size() * sizeof(GeometryVertex), sunBytes,
+            localBytes, s_->surfaceSpec, s_->variant.shapes);
+        s_->reuseSurfaces = request.reuseSurfaces && frame.vdbShadowSamples <= 0 && s_->surfacesValid &&
+                            surfaces == s_->surfaceInputs;
+        s_->surfacesValid = false;  // until this frame has run
         const bool last = n == frames - 1;
         BRUME_VK(vkResetCommandBuffer(s_->cmd, 0), "reset the command buffer");
         VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
@@ -318,6 +357,8 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         if (!wall) return wall.error();
         wallMs = wall.value();
         written = r.temporalRegion;
+        s_->surfaceInputs = std::move(surfaces);
+        s_->surfacesValid = true;
         endTemporalFrame(s_->temporalState, t, frame, sceneKey);
     }
 

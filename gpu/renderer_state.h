@@ -31,6 +31,12 @@ struct GpuRenderer::State {
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     std::vector<shd::GlowParams> glow;   // the glow pass's dispatches, one per glowing light in view
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
+    // When::SurfacesChanged passes: this frame keeps their last output (reuseSurfaces), which is
+    // valid while surfacesValid (no resource replaced since the frame that wrote it) and was made
+    // from surfaceInputs (gpu_renderer.cpp).
+    bool reuseSurfaces = false;
+    bool surfacesValid = false;
+    std::vector<uint8_t> surfaceInputs;
     bool froxelRegions = true;           // GpuOptions::froxelRegions
     bool poisonShadowVolume = false;     // GpuOptions::poisonShadowVolume
     // A prepare that failed part-way (out of GPU memory) may have replaced resources without

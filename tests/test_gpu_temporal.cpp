@@ -291,3 +291,60 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
     }
     pair.expectNoValidationMessages();
 }
+
+namespace {
+
+bool ranPass(const GpuRender& r, const char* name) {
+    return std::any_of(r.passes.begin(), r.passes.end(), [&](const PassTiming& p) { return p.name == name; });
+}
+
+}  // namespace
+
+// RenderRequest::reuseSurfaces (the editor's): the geometry and distant fog passes are left out while
+// everything they read stays the same (the view at rest), and the image equals, bit for bit, the one
+// a renderer that redraws them every frame makes, through rest, a light edit, a camera move, and a
+// resize there and back (a parked set of screen images: their contents are another frame's).
+TEST(GpuTemporal, SurfacesKeptAtRestRenderAsRedrawnThroughEditsMovesAndResizes) {
+    GpuOptions options;
+    options.validation = true;
+    auto keeping = GpuRenderer::create(options);
+    ASSERT_TRUE(keeping.ok()) << keeping.error().message;
+    auto redrawing = GpuRenderer::create(options);
+    ASSERT_TRUE(redrawing.ok()) << redrawing.error().message;
+    Scene s = temporalScene();
+    struct Step {
+        const char* what;
+        glm::ivec2 size;
+        bool kept;  // expected: the surfaces of the previous frame are kept
+    };
+    const std::vector<Step> steps = {
+        {"first frame", {96, 54}, false}, {"at rest", {96, 54}, true},     {"at rest", {96, 54}, true},
+        {"light edit", {96, 54}, false},  {"at rest", {96, 54}, true},     {"camera move", {96, 54}, false},
+        {"smaller", {64, 36}, false},     {"back to size", {96, 54}, false}, {"at rest", {96, 54}, true},
+    };
+    for (size_t n = 0; n < steps.size(); ++n) {
+        const std::string what = steps[n].what;
+        if (what == "light edit") s.lights[1].intensity *= 2.0f;
+        if (what == "camera move") s.camera.position.x += 0.3f;
+        RenderRequest request;
+        request.width = steps[n].size.x;
+        request.height = steps[n].size.y;
+        request.quality = Quality::High;
+        request.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
+        RenderRequest reusing = request;
+        reusing.reuseSurfaces = true;
+        auto a = keeping.value()->render(s, reusing);
+        ASSERT_TRUE(a.ok()) << a.error().message;
+        auto b = redrawing.value()->render(s, request);
+        ASSERT_TRUE(b.ok()) << b.error().message;
+        EXPECT_TRUE(ranPass(b.value(), "geometry") && ranPass(b.value(), "distant fog")) << "step " << n;
+        EXPECT_EQ(!ranPass(a.value(), "geometry"), steps[n].kept) << "step " << n << " (" << what << ")";
+        EXPECT_EQ(!ranPass(a.value(), "distant fog"), steps[n].kept) << "step " << n << " (" << what << ")";
+        const Image& x = a.value().image;
+        const Image& y = b.value().image;
+        ASSERT_EQ(x.pixels.size(), y.pixels.size());
+        float largest = 0.0f;
+        for (size_t i = 0; i < x.pixels.size(); ++i) largest = std::max(largest, glm::length(x.pixels[i] - y.pixels[i]));
+        EXPECT_EQ(largest, 0.0f) << "step " << n << " (" << what << ")";
+    }
+}

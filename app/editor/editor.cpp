@@ -254,6 +254,7 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     request.history = plan.restartHistory ? HistoryMode::Restart : HistoryMode::Continue;
     request.debugView = debug_.view;
     request.debugSlice = debug_.slice;
+    request.reuseSurfaces = true;  // at rest the surfaces do not change from frame to frame
     Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
     if (plan.coarse) shown.froxels.tile_px = coarseTilePx(resolveFroxelSettings(shown, Quality::Low).tile_px, plan.scale);
