@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "io/vdb_import.h"
+#include "sanitizer_build.h"
 #include "test_support.h"
 #include "vdb_test_util.h"
 
@@ -24,20 +25,6 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kReader = std::string(BRUME_BINARY_DIR) + "/app/brume-vdb-read";
-
-// Whether this build (and so its reader) has AddressSanitizer (scripts/test --sanitize): a reader
-// that hits a memory error then ends with ASan's report on stderr and exit code 1, not by a signal.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAsanBuild = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAsanBuild = true;
-#else
-constexpr bool kAsanBuild = false;
-#endif
-#else
-constexpr bool kAsanBuild = false;
-#endif
 
 class VdbRobust : public ::testing::Test {
 protected:
@@ -112,7 +99,7 @@ TEST_F(VdbRobust, AFileThatCrashesOpenVdbIsAnErrorNotACrash) {
     fs::create_directories(dir_ / "out");
     const int reader = run("'" + kReader + "' load '" + bad.string() + "' density 1073741824 '" +
                            (dir_ / "out").string() + "' 2>'" + (dir_ / "reader_err.txt").string() + "'");
-    if (kAsanBuild) {
+    if (test::kAsanBuild) {
         const std::string report = readBytes((dir_ / "reader_err.txt").string());
         EXPECT_EQ(reader, 1) << report;
         EXPECT_NE(report.find("ERROR: AddressSanitizer: heap-buffer-overflow"), std::string::npos)
