@@ -210,26 +210,38 @@ void appendBytes(std::vector<uint8_t>& out, const void* p, size_t n) {
     out.insert(out.end(), b, b + n);
 }
 
+// Which shadow maps a frame reads, without their megabytes: the caches' maps do not change in place,
+// so the same storage with no build since holds the same map (a build makes the key differ).
+struct ShadowMapsKey {
+    const void* sun;
+    uint64_t sunTexels;
+    int64_t sunBuilds;
+    const void* local;
+    uint64_t localTexels;
+    int64_t localBuilds;  // 64-bit members only: no padding in the bytes compared
+};
+
 // Everything the When::SurfacesChanged passes (geometry, distant fog) read this frame, as bytes:
 // the frame's uniforms without what follows the jitter (the jitter, the temporal blend, the media
 // origin: neither pass reads them when surfaces take no vdb layer, see below), the volumes and
-// lights as uploaded, the light clusters and reach, the vertices, the shadow maps, the geometry
-// pass's specialization key and variant. Equal bytes mean equal outputs.
+// lights as uploaded, the light reach (the only part of lightClusters they read), the vertices,
+// the shadow maps (ShadowMapsKey), the geometry pass's specialization key and variant. Equal bytes
+// mean equal outputs.
 std::vector<uint8_t> surfaceInputs(shd::FrameUniforms frame, const FrameResources& r, size_t volumeBytes,
-                                   size_t lightBytes, size_t clusterBytes, size_t vertexBytes, size_t sunBytes,
-                                   size_t localBytes, const SpecKey& surfaceSpec, bool shapes) {
+                                   size_t lightBytes, const std::vector<int>& reach, size_t vertexBytes,
+                                   const ShadowMapsKey& maps, const SpecKey& surfaceSpec, bool shapes) {
     frame.jitter = glm::vec4(0.0f);
     frame.temporal = glm::vec4(0.0f);
     frame.mediaOriginX = frame.mediaOriginY = frame.mediaOriginZ = 0;
     std::vector<uint8_t> out;
-    out.reserve(sizeof(frame) + volumeBytes + lightBytes + clusterBytes + vertexBytes + sunBytes + localBytes + 64);
+    out.reserve(sizeof(frame) + volumeBytes + lightBytes + reach.size() * sizeof(int) + vertexBytes + 256);
     appendBytes(out, &frame, sizeof(frame));
     appendBytes(out, r[BufferId::volumes].mapped, volumeBytes);
     appendBytes(out, r[BufferId::lights].mapped, lightBytes);
-    appendBytes(out, r[BufferId::lightClusters].mapped, clusterBytes);
+    appendBytes(out, reach.data(), reach.size() * sizeof(int));
     appendBytes(out, r.vertices.mapped, vertexBytes);
-    appendBytes(out, r[BufferId::sunShadowMap].mapped, sizeof(shd::SunShadowFit) + sunBytes);
-    appendBytes(out, r[BufferId::localShadowMaps].mapped, localBytes);
+    appendBytes(out, r[BufferId::sunShadowMap].mapped, sizeof(shd::SunShadowFit));
+    appendBytes(out, &maps, sizeof(maps));
     appendBytes(out, &surfaceSpec, sizeof(surfaceSpec));
     out.push_back(shapes ? 1 : 0);
     return out;
@@ -338,12 +350,15 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         std::memcpy(r[BufferId::previousFrame].mapped, &s_->temporalState.frame, sizeof(frame));
         writeHistoryBindings(*s_->device, s_->bindings.set, r, t.writeIndex);
         // The surfaces follow the jitter only through the vdb layers of the shadow volume.
-        std::vector<uint8_t> surfaces = surfaceInputs(
-            frame, r, cs.volumes.size() * sizeof(shd::VolumeData), cs.lights.size() * sizeof(shd::LightData),
-            (clusters.records.size() + reach.size()) * sizeof(int), vertices.size() * sizeof(GeometryVertex), sunBytes,
-            localBytes, s_->surfaceSpec, s_->variant.shapes);
+        std::vector<uint8_t> surfaces;
+        if (request.reuseSurfaces)
+            surfaces = surfaceInputs(frame, r, cs.volumes.size() * sizeof(shd::VolumeData),
+                                     cs.lights.size() * sizeof(shd::LightData), reach, vertices.size() * sizeof(GeometryVertex),
+                                     ShadowMapsKey{sun.depth.data(), sun.depth.size(), s_->sunShadow.builds(),
+                                                   local.depth.data(), local.depth.size(), s_->localShadows.builds()},
+                                     s_->surfaceSpec, s_->variant.shapes);
         s_->reuseSurfaces = request.reuseSurfaces && frame.vdbShadowSamples <= 0 && s_->surfacesValid &&
-                            surfaces == s_->surfaceInputs;
+                            !s_->surfaceInputs.empty() && surfaces == s_->surfaceInputs;
         s_->surfacesValid = false;  // until this frame has run
         const bool last = n == frames - 1;
         BRUME_VK(vkResetCommandBuffer(s_->cmd, 0), "reset the command buffer");
