@@ -109,6 +109,42 @@ Volume depthFog() {
     return v;
 }
 
+// FogShadowDenseBlock's scene (tests/ground_shadow.h) with the block centred at `centre`: a 3 x 1 x
+// 3 m block of dense fog (sigma_s 20 / m, no fade), a sun straight down, no ambient, a grey ground
+// plane, the camera 2 m up at z = 9; rendered at 96x54 `high` (denseBlockRequest).
+Scene denseBlockScene(glm::vec3 centre) {
+    Scene s;
+    s.camera.position = {0.0f, 2.0f, 9.0f};
+    s.camera.target = {0.0f, 0.5f, 0.0f};
+    s.camera.far = 40.0f;
+    s.ambient = glm::vec3(0.0f);
+    Light overhead = makeLight(LightType::Directional);
+    overhead.direction = {0.0f, -1.0f, 0.0f};
+    overhead.intensity = 2.0f;
+    s.lights = {overhead};
+    Volume block = box();
+    block.transform.translation = centre;
+    block.transform.scale = {3.0f, 1.0f, 3.0f};
+    block.transform.rotation_deg = glm::vec3(0.0f);
+    block.edge_fade = 0.0f;
+    block.medium.scattering = glm::vec3(20.0f);
+    block.medium.absorption = glm::vec3(0.0f);
+    s.volumes = {block};
+    Geometry plane;
+    plane.type = GeometryType::Plane;
+    plane.albedo = glm::vec3(0.5f);
+    s.geometry = {plane};
+    return s;
+}
+
+RenderRequest denseBlockRequest() {
+    RenderRequest request = smallRequest();
+    request.width = 96;
+    request.height = 54;
+    request.quality = Quality::High;
+    return request;
+}
+
 std::vector<Geometry> ground() {
     Geometry plane;
     plane.type = GeometryType::Plane;
@@ -315,31 +351,8 @@ TEST_F(GpuTest, FogShadowsOnFogAndGroundMatchCpu) {
 // transmittance between tile corners without a conservative rule fails it (docs/performance.md,
 // "geotile" and "geo").
 TEST_F(GpuTest, DenseBlockLetsNoSunOntoTheGroundBeneath) {
-    Scene s;
-    s.camera.position = {0.0f, 2.0f, 9.0f};
-    s.camera.target = {0.0f, 0.5f, 0.0f};
-    s.camera.far = 40.0f;
-    s.ambient = glm::vec3(0.0f);
-    Light overhead = makeLight(LightType::Directional);
-    overhead.direction = {0.0f, -1.0f, 0.0f};
-    overhead.intensity = 2.0f;
-    s.lights = {overhead};
-    Volume block = box();
-    block.transform.translation = {0.0f, 3.0f, 0.0f};
-    block.transform.scale = {3.0f, 1.0f, 3.0f};
-    block.transform.rotation_deg = glm::vec3(0.0f);
-    block.edge_fade = 0.0f;
-    block.medium.scattering = glm::vec3(20.0f);
-    block.medium.absorption = glm::vec3(0.0f);
-    s.volumes = {block};
-    Geometry plane;
-    plane.type = GeometryType::Plane;
-    plane.albedo = glm::vec3(0.5f);
-    s.geometry = {plane};
-    RenderRequest request = smallRequest();
-    request.width = 96;
-    request.height = 54;
-    request.quality = Quality::High;
+    const Scene s = denseBlockScene({0.0f, 3.0f, 0.0f});
+    const RenderRequest request = denseBlockRequest();
     auto gpu = renderer->render(s, request);
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
     const Image& img = gpu.value().image;
@@ -353,31 +366,8 @@ TEST_F(GpuTest, DenseBlockLetsNoSunOntoTheGroundBeneath) {
 // still keeps the sun off the ground beneath it; moved behind the camera, where its shadow falls out
 // of view, it leaves the image exactly as the scene without it renders.
 TEST_F(GpuTest, VolumesOutOfViewShadowTheGroundOrAddNothing) {
-    Scene s;
-    s.camera.position = {0.0f, 2.0f, 9.0f};
-    s.camera.target = {0.0f, 0.5f, 0.0f};
-    s.camera.far = 40.0f;
-    s.ambient = glm::vec3(0.0f);
-    Light overhead = makeLight(LightType::Directional);
-    overhead.direction = {0.0f, -1.0f, 0.0f};
-    overhead.intensity = 2.0f;
-    s.lights = {overhead};
-    Volume block = box();
-    block.transform.translation = {0.0f, 14.0f, 0.0f};  // above the view
-    block.transform.scale = {3.0f, 1.0f, 3.0f};
-    block.transform.rotation_deg = glm::vec3(0.0f);
-    block.edge_fade = 0.0f;
-    block.medium.scattering = glm::vec3(20.0f);
-    block.medium.absorption = glm::vec3(0.0f);
-    s.volumes = {block};
-    Geometry plane;
-    plane.type = GeometryType::Plane;
-    plane.albedo = glm::vec3(0.5f);
-    s.geometry = {plane};
-    RenderRequest request = smallRequest();
-    request.width = 96;
-    request.height = 54;
-    request.quality = Quality::High;
+    Scene s = denseBlockScene({0.0f, 14.0f, 0.0f});  // above the view
+    const RenderRequest request = denseBlockRequest();
     auto above = renderer->render(s, request);
     ASSERT_TRUE(above.ok()) << above.error().message;
     const FroxelResult cpu = renderFroxelCpu(s, request);

@@ -86,88 +86,37 @@ TEST(MediaRegion, FollowsTheContent) {
 
 namespace {
 
-// The largest optical depth of volume 0 toward each light, and whether its bounds hold some sample,
-// over the froxels of a coarse sweep of the grid (every 3rd froxel per axis, two jitters).
+// The largest optical depth of volume 0 toward each light whose fog shadow is evaluated, and whether
+// its bounds hold a point, over a sweep of points (froxel sample points or surface points).
 struct VolumeTerms {
     float maxDepth = 0.0f;
     bool holdsSample = false;
+
+    void add(const CompiledScene& cs, const shd::FrameUniforms& f, vec3 p) {
+        holdsSample = holdsSample || shd::insideBounds(cs.volumes[0], p);
+        for (const shd::LightData& l : cs.lights) {
+            if (!shd::fogShadowsLight(l, f.localFogShadows)) continue;
+            const shd::LightSample ls = shd::evalLight(l, p);
+            const vec3 tau = shd::shadowOpticalDepth(cs.volumes[0], p, ls.toLight, ls.distance);
+            maxDepth = std::max(maxDepth, std::max(tau.x, std::max(tau.y, tau.z)));
+        }
+    }
 };
 
-VolumeTerms volumeTerms(const CompiledScene& cs, const shd::FrameUniforms& f) {
+// Over the froxels of a coarse sweep of the grid (every 3rd froxel per axis, two jitters).
+VolumeTerms froxelTerms(const CompiledScene& cs, const shd::FrameUniforms& f) {
     VolumeTerms t;
     const glm::ivec3 dims(f.froxelDims);
     for (vec3 jitter : {vec3(0.0f), vec3(0.999f)})
         for (int z = 0; z <= dims.z; z += 3)
             for (int y = 0; y <= dims.y; y += 3)
-                for (int x = 0; x <= dims.x; x += 3) {
-                    const vec3 p = shd::worldFromFroxelCoord(glm::min(vec3(x, y, z) + jitter, vec3(dims)), f);
-                    t.holdsSample = t.holdsSample || shd::insideBounds(cs.volumes[0], p);
-                    for (const shd::LightData& l : cs.lights) {
-                        if (!shd::fogShadowsLight(l, f.localFogShadows)) continue;
-                        const shd::LightSample ls = shd::evalLight(l, p);
-                        const vec3 tau = shd::shadowOpticalDepth(cs.volumes[0], p, ls.toLight, ls.distance);
-                        t.maxDepth = std::max(t.maxDepth, std::max(tau.x, std::max(tau.y, tau.z)));
-                    }
-                }
+                for (int x = 0; x <= dims.x; x += 3)
+                    t.add(cs, f, shd::worldFromFroxelCoord(glm::min(vec3(x, y, z) + jitter, vec3(dims)), f));
     return t;
 }
 
-}  // namespace
-
-// The froxel passes leave out a volume only when it adds exactly nothing to them: no sample point in
-// its bounds and no fog shadow through it. And they do leave out a box behind the camera that no
-// shadow ray from the view crosses.
-TEST(MediaRegion, VolumesOutOfReachAddNothingToTheFroxels) {
-    struct Case {
-        vec3 boxCentre;
-        vec3 sunDirection;  // the way the light travels
-        bool expectCulled;
-    };
-    const std::vector<Case> cases = {
-        {{0.0f, 1.0f, 20.0f}, {-0.8f, -0.35f, -0.3f}, true},   // behind the camera, sun from the side-front
-        {{0.0f, 1.0f, 20.0f}, {0.0f, -0.3f, -1.0f}, false},    // behind the camera, sun shining through it
-        {{0.0f, 1.0f, -200.0f}, {0.0f, -1.0f, 0.0f}, true},    // past the froxel far, sun from above
-        {{0.0f, 1.0f, -200.0f}, {0.0f, -0.2f, 1.0f}, false},   // past the froxel far, low sun behind it
-        {{0.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},      // in view
-        {{0.0f, 30.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},     // above the view, overhead sun
-        {{40.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, true},      // far to the side, overhead sun
-    };
-    int culled = 0;
-    for (size_t c = 0; c < cases.size(); ++c) {
-        Scene s = test::sceneWithTestView();
-        s.volumes = {test::boxFog(cases[c].boxCentre, {3.0f, 2.4f, 3.0f}, 0.35f, 0.5f, 0.02f)};
-        Light sun = makeLight(LightType::Directional);
-        sun.direction = glm::normalize(cases[c].sunDirection);
-        s.lights = {sun, test::pointLight({1.0f, 1.0f, 0.0f}, 6.0f, 5.0f)};
-        const CompiledScene cs = compileScene(s);
-        const shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
-        const std::vector<bool> inReach = froxelVolumesInReach(cs, f);
-        ASSERT_EQ(inReach.size(), 1u);
-        const VolumeTerms t = volumeTerms(cs, f);
-        if (!inReach[0]) {
-            ++culled;
-            EXPECT_FALSE(t.holdsSample) << "case " << c;
-            EXPECT_EQ(t.maxDepth, 0.0f) << "case " << c;
-        }
-        if (!cases[c].expectCulled) {  // the cases kept do reach the froxels: the check above has teeth
-            EXPECT_TRUE(t.holdsSample || t.maxDepth > 0.0f) << "case " << c;
-        }
-        EXPECT_EQ(!inReach[0], cases[c].expectCulled) << "case " << c << ": holds a sample " << t.holdsSample
-                                                      << ", largest optical depth " << t.maxDepth;
-    }
-    EXPECT_GT(culled, 0);
-
-    // Unbounded fog is always in reach.
-    const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
-    const CompiledScene hc = compileScene(h);
-    EXPECT_TRUE(froxelVolumesInReach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
-}
-
-namespace {
-
-// Volume 0's largest optical depth toward each light whose fog shadow is evaluated, and whether its
-// bounds hold a point, over a sweep of the view frustum from the camera near to the camera far
-// (33 x 19 rays through the image, 40 depths), where the geometry pass can shade a surface.
+// Over the view frustum from the camera near to the camera far (33 x 19 rays through the image, 40
+// depths), where the geometry pass can shade a surface.
 VolumeTerms surfaceTerms(const CompiledScene& cs, const shd::FrameUniforms& f) {
     VolumeTerms t;
     const float zNear = f.projection.z, zFar = f.projection.w;
@@ -176,73 +125,100 @@ VolumeTerms surfaceTerms(const CompiledScene& cs, const shd::FrameUniforms& f) {
         for (int y = 0; y <= 18; ++y)
             for (int x = 0; x <= 32; ++x) {
                 const glm::vec2 pixel(float(f.counts.x) * float(x) / 32.0f, float(f.counts.y) * float(y) / 18.0f);
-                const vec3 p = vec3(f.worldFromView * glm::vec4(shd::viewRayFromPixel(pixel, f) * z, 1.0f));
-                t.holdsSample = t.holdsSample || shd::insideBounds(cs.volumes[0], p);
-                for (const shd::LightData& l : cs.lights) {
-                    if (!shd::fogShadowsLight(l, f.localFogShadows)) continue;
-                    const shd::LightSample ls = shd::evalLight(l, p);
-                    const vec3 tau = shd::shadowOpticalDepth(cs.volumes[0], p, ls.toLight, ls.distance);
-                    t.maxDepth = std::max(t.maxDepth, std::max(tau.x, std::max(tau.y, tau.z)));
-                }
+                t.add(cs, f, vec3(f.worldFromView * glm::vec4(shd::viewRayFromPixel(pixel, f) * z, 1.0f)));
             }
     }
     return t;
 }
 
+struct ReachCase {
+    vec3 boxCentre;
+    vec3 sunDirection;  // the way the light travels
+    bool expectCulled;
+};
+
+// The test view with a faded box at the case's centre, its sun and a point light; froxelFar > 0
+// overrides the preset's froxel far.
+Scene reachScene(const ReachCase& c, float froxelFar) {
+    Scene s = test::sceneWithTestView();
+    if (froxelFar > 0.0f) s.froxels.far = froxelFar;
+    s.volumes = {test::boxFog(c.boxCentre, {3.0f, 2.4f, 3.0f}, 0.35f, 0.5f, 0.02f)};
+    Light sun = makeLight(LightType::Directional);
+    sun.direction = glm::normalize(c.sunDirection);
+    s.lights = {sun, test::pointLight({1.0f, 1.0f, 0.0f}, 6.0f, 5.0f)};
+    return s;
+}
+
+// Each case's volume is out of `reach` exactly when expected; a volume out of reach adds nothing
+// over `terms`' sweep, and each one expected in reach adds something there (so the first check has
+// teeth). Unbounded fog is always in reach.
+template <typename Reach, typename Terms>
+void expectReachCases(const std::vector<ReachCase>& cases, float froxelFar, Reach reach, Terms terms) {
+    int culled = 0;
+    for (size_t c = 0; c < cases.size(); ++c) {
+        const Scene s = reachScene(cases[c], froxelFar);
+        const CompiledScene cs = compileScene(s);
+        const shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
+        const std::vector<bool> inReach = reach(cs, f);
+        ASSERT_EQ(inReach.size(), 1u);
+        const VolumeTerms t = terms(cs, f);
+        if (!inReach[0]) {
+            ++culled;
+            EXPECT_FALSE(t.holdsSample) << "case " << c;
+            EXPECT_EQ(t.maxDepth, 0.0f) << "case " << c;
+        }
+        if (!cases[c].expectCulled) {
+            EXPECT_TRUE(t.holdsSample || t.maxDepth > 0.0f) << "case " << c;
+        }
+        EXPECT_EQ(!inReach[0], cases[c].expectCulled) << "case " << c << ": holds a point " << t.holdsSample
+                                                      << ", largest optical depth " << t.maxDepth;
+    }
+    EXPECT_GT(culled, 0);
+    const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
+    const CompiledScene hc = compileScene(h);
+    EXPECT_TRUE(reach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
+}
+
 }  // namespace
+
+// The froxel passes leave out a volume only when it adds exactly nothing to them: no sample point in
+// its bounds and no fog shadow through it. And they do leave out a box behind the camera that no
+// shadow ray from the view crosses.
+TEST(MediaRegion, VolumesOutOfReachAddNothingToTheFroxels) {
+    expectReachCases(
+        {
+            {{0.0f, 1.0f, 20.0f}, {-0.8f, -0.35f, -0.3f}, true},  // behind the camera, sun from the side-front
+            {{0.0f, 1.0f, 20.0f}, {0.0f, -0.3f, -1.0f}, false},   // behind the camera, sun shining through it
+            {{0.0f, 1.0f, -200.0f}, {0.0f, -1.0f, 0.0f}, true},   // past the froxel far, sun from above
+            {{0.0f, 1.0f, -200.0f}, {0.0f, -0.2f, 1.0f}, false},  // past the froxel far, low sun behind it
+            {{0.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},     // in view
+            {{0.0f, 30.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},    // above the view, overhead sun
+            {{40.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, true},     // far to the side, overhead sun
+        },
+        0.0f, froxelVolumesInReach, froxelTerms);
+}
 
 // The geometry pass leaves out a volume only when it adds exactly nothing to any surface the view
 // can hold: no point of the view frustum (camera near to camera far) in its bounds and no fog shadow
 // through it from such a point. It leaves out the offscreen bench scene's box behind the camera, and
 // keeps a box in view past the froxel far, which the froxel passes leave out.
 TEST(MediaRegion, VolumesOutOfTheSurfacesReachAddNothingToThem) {
-    struct Case {
-        vec3 boxCentre;
-        vec3 sunDirection;  // the way the light travels
-        bool expectCulled;
-    };
-    const std::vector<Case> cases = {
-        {{0.0f, 1.0f, 20.0f}, {-0.8f, -0.35f, -0.3f}, true},   // behind the camera (bench/scenes/default_offscreen_volume.json)
-        {{0.0f, 1.0f, 20.0f}, {0.0f, -0.3f, -1.0f}, false},    // behind the camera, sun shining through it
-        {{0.0f, 1.0f, -200.0f}, {0.0f, -1.0f, 0.0f}, true},    // past the camera far, sun from above
-        {{0.0f, 1.0f, -200.0f}, {0.0f, -0.2f, 1.0f}, false},   // past the camera far, low sun behind it
-        {{0.0f, 1.0f, -30.0f}, {0.0f, -1.0f, 0.0f}, false},    // in view past the froxel far
-        {{0.0f, 30.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},     // above the view, overhead sun
-        {{60.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, true},      // far to the side, overhead sun
-    };
-    int culled = 0;
-    for (size_t c = 0; c < cases.size(); ++c) {
-        Scene s = test::sceneWithTestView();
-        s.froxels.far = 20.0f;  // the froxels end well before the camera far (60 m)
-        s.volumes = {test::boxFog(cases[c].boxCentre, {3.0f, 2.4f, 3.0f}, 0.35f, 0.5f, 0.02f)};
-        Light sun = makeLight(LightType::Directional);
-        sun.direction = glm::normalize(cases[c].sunDirection);
-        s.lights = {sun, test::pointLight({1.0f, 1.0f, 0.0f}, 6.0f, 5.0f)};
-        const CompiledScene cs = compileScene(s);
-        const shd::FrameUniforms f = frameOf(s, cs, vec3(0.5f));
-        const std::vector<bool> inReach = surfaceVolumesInReach(cs, f);
-        ASSERT_EQ(inReach.size(), 1u);
-        const VolumeTerms t = surfaceTerms(cs, f);
-        if (!inReach[0]) {
-            ++culled;
-            EXPECT_FALSE(t.holdsSample) << "case " << c;
-            EXPECT_EQ(t.maxDepth, 0.0f) << "case " << c;
-        }
-        if (!cases[c].expectCulled) {  // the cases kept do reach the surfaces: the check above has teeth
-            EXPECT_TRUE(t.holdsSample || t.maxDepth > 0.0f) << "case " << c;
-        }
-        EXPECT_EQ(!inReach[0], cases[c].expectCulled) << "case " << c << ": holds a point " << t.holdsSample
-                                                      << ", largest optical depth " << t.maxDepth;
-        if (c == 4) {
-            EXPECT_FALSE(froxelVolumesInReach(cs, f)[0]) << "the box past the froxel far: the two tests differ here";
-        }
-    }
-    EXPECT_GT(culled, 0);
-
-    // Unbounded fog is always in reach.
-    const Scene h = test::heightFogView(20.0f, 0.5f, {0.2f, 0.2f, 0.2f});
-    const CompiledScene hc = compileScene(h);
-    EXPECT_TRUE(surfaceVolumesInReach(hc, frameOf(h, hc, vec3(0.5f)))[0]);
+    const float froxelFar = 20.0f;  // the froxels end well before the camera far (60 m)
+    const ReachCase pastTheFroxels{{0.0f, 1.0f, -30.0f}, {0.0f, -1.0f, 0.0f}, false};
+    expectReachCases(
+        {
+            {{0.0f, 1.0f, 20.0f}, {-0.8f, -0.35f, -0.3f}, true},  // behind the camera (bench/scenes/default_offscreen_volume.json)
+            {{0.0f, 1.0f, 20.0f}, {0.0f, -0.3f, -1.0f}, false},   // behind the camera, sun shining through it
+            {{0.0f, 1.0f, -200.0f}, {0.0f, -1.0f, 0.0f}, true},   // past the camera far, sun from above
+            {{0.0f, 1.0f, -200.0f}, {0.0f, -0.2f, 1.0f}, false},  // past the camera far, low sun behind it
+            pastTheFroxels,                                       // in view past the froxel far
+            {{0.0f, 30.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, false},    // above the view, overhead sun
+            {{60.0f, 1.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, true},     // far to the side, overhead sun
+        },
+        froxelFar, surfaceVolumesInReach, surfaceTerms);
+    const Scene s = reachScene(pastTheFroxels, froxelFar);
+    const CompiledScene cs = compileScene(s);
+    EXPECT_FALSE(froxelVolumesInReach(cs, frameOf(s, cs, vec3(0.5f)))[0]) << "the two tests differ here";
 }
 
 // The shadow volume pass computes only shadowCellRegion's cells: every cell the light pass's lookup
