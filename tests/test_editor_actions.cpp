@@ -719,8 +719,10 @@ TEST(EditorActions, TextThatIsNotUtf8IsAnErrorNotACrash) {
         ASSERT_FALSE(r.ok()) << path;
         EXPECT_EQ(r.error().message.find('\n'), std::string::npos);
     }
-    // Also from fuzzing: a verb holding a space or a quote is written back quoted, as one word.
-    for (const char* line : {"dup\"key \\\"lamp\\\"\" x", "\"#not a comment\" 1"}) {
+    // Also from fuzzing: a verb holding a space or a quote is written back quoted, as one word; so is
+    // a word holding a carriage return (a separator outside quotes) or NUL bytes.
+    for (const std::string& line : {std::string("dup\"key \\\"lamp\\\"\" x"), std::string("\"#not a comment\" 1"),
+                                   std::string("add volume box \"R\r\0\0og\"", 23)}) {
         Result<Action> a = parseAction(line);
         ASSERT_TRUE(a.ok()) << line;
         Result<Action> back = parseAction(formatAction(a.value()));

@@ -460,9 +460,11 @@ Result<Action> parseAction(const std::string& line) {
 }
 
 std::string formatAction(const Action& action) {
-    // The verb too (fuzzing found `dup"key \"lamp\""`: one word with a space, written back as two).
+    // The verb too (fuzzing found `dup"key \"lamp\""`: one word with a space, written back as two),
+    // and every byte parseAction splits words on (fuzzing found a quoted carriage return written
+    // back bare, which split the word in two).
     auto word = [](const std::string& w) {
-        const bool plain = !w.empty() && w.find_first_of(" \t\"\\#") == std::string::npos;
+        const bool plain = !w.empty() && w.find_first_of(" \t\r\"\\#") == std::string::npos;
         if (plain) return w;
         std::string q = "\"";
         for (char c : w) q += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
