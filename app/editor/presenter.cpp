@@ -390,8 +390,16 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, Pr
     VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkBeginCommandBuffer(cmd, &begin);
-    timer.reset(cmd);
-    timer.begin(cmd, "display");
+    // The parts' timestamps only while measuring (--bench reads them through lastParts): otherwise
+    // they are queries and labels in every window frame that nothing reads.
+    auto startPart = [&](const char* name) {
+        if (measureParts) timer.begin(cmd, name);
+    };
+    auto endPart = [&] {
+        if (measureParts) timer.end(cmd);
+    };
+    if (measureParts) timer.reset(cmd);
+    startPart("display");
     const glm::ivec2 window(static_cast<int>(extent.width), static_cast<int>(extent.height));
     // The previous frame's copies read the pixel buffers; this frame rewrites them.
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0);
@@ -430,8 +438,8 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, Pr
         gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     }
-    timer.end(cmd);
-    timer.begin(cmd, path == PresentPath::Upscale ? "upscale" : "copy");
+    endPart();
+    startPart(path == PresentPath::Upscale ? "upscale" : "copy");
     VkImageMemoryBarrier toCopy = imageBarrier(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                                                VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toCopy);
@@ -459,8 +467,8 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, Pr
         vkCmdCopyBufferToImage(cmd, windowPixels.buffer.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     }
 
-    timer.end(cmd);
-    timer.begin(cmd, "ui");
+    endPart();
+    startPart("ui");
     VkRenderPassBeginInfo rp = vkStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
     rp.renderPass = renderPass.get();
     rp.framebuffer = framebuffers[index].get();
@@ -468,7 +476,7 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, Pr
     vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
     if (ui) ImGui_ImplVulkan_RenderDrawData(ui, cmd);
     vkCmdEndRenderPass(cmd);
-    timer.end(cmd);
+    endPart();
 
     if (capture) {
         VkImageMemoryBarrier toRead = imageBarrier(image, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
