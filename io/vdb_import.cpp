@@ -1,5 +1,6 @@
 #include "vdb_import.h"
 #include "mesh_import.h"
+#include "one_line.h"
 #include "vdb_inprocess.h"
 #include "vdb_stream.h"
 
@@ -91,7 +92,7 @@ Result<FileGrids> readAll(const std::string& path, const std::function<void(cons
     try {
         out.grids = readGrids(path, progress);
     } catch (const std::exception& e) {
-        return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
+        return Error{path + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."};
     } catch (...) {
         return Error{path + ": not a readable OpenVDB file."};
     }
@@ -113,7 +114,7 @@ Result<FileGrids> readMetadata(const std::string& path) {
         out.grids = file.readAllGridMetadata();  // seeks: reads no topology and no voxel buffer
         file.close();
     } catch (const std::exception& e) {
-        return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
+        return Error{path + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."};
     } catch (...) {
         return Error{path + ": not a readable OpenVDB file."};
     }

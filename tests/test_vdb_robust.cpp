@@ -4,6 +4,7 @@
 // the memory cap is applied from the grid's metadata before its buffers are read.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -190,6 +191,33 @@ TEST_F(VdbRobust, ByteFlipsInBytes256To511GiveAnErrorOrACleanLoad) {
 // oiio_sphere.vdb is uncompressed: cut in half, OpenVDB's own file reader reads zeros past the end
 // and loaded 6,521 of its 9,047 voxels silently; a cut anywhere, even in the last voxel values, is
 // now an error (io/vdb_stream.h).
+// OpenVDB's exceptions can quote bytes of the file: a transform whose map type is not registered gives
+// "KeyError: Map NAME", NAME as stored (found by fuzz_vdb_reader: a newline there split the sentence).
+// The name here holds a newline, a control byte and a byte that is not UTF-8: the reader refuses the
+// file in one line, control characters escaped, where it used to put the newline in the sentence (and
+// the invalid byte made its JSON writer throw, so the reader died).
+TEST_F(VdbRobust, LibraryMessagesQuotingTheFileStayOneLine) {
+    const fs::path good = dir_ / "good.vdb";
+    test::writeGrids(good, {test::makeGrid("density", 0, 3, [](openvdb::Coord) { return 1.0f; },
+                                           openvdb::math::Transform::createLinearTransform(0.1))});
+    std::string bytes = readBytes(good.string());
+    const std::string mapType = "UniformScaleMap";
+    const size_t at = bytes.find(mapType);
+    ASSERT_NE(at, std::string::npos) << "the written file names no " << mapType;
+    bytes.replace(at, mapType.size(), std::string("Uniform\nScale\x01\xff", mapType.size()));
+    const fs::path bad = dir_ / "bad map.vdb";
+    writeBytes(bad, bytes);
+    Result<std::vector<VdbGridInfo>> info = inspectVdb(bad.string());
+    Result<VdbLoad> load = loadVdbDensity(bad.string(), {});
+    for (const Error* e : {info.ok() ? nullptr : &info.error(), load.ok() ? nullptr : &load.error()}) {
+        ASSERT_NE(e, nullptr) << "a file whose transform names no registered map was read";
+        const std::string& m = e->message;
+        EXPECT_EQ(m.rfind(bad.string() + ": not a readable OpenVDB file", 0), 0u) << m;
+        EXPECT_TRUE(std::none_of(m.begin(), m.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; })) << m;
+        EXPECT_NE(m.find("Uniform\\nScale\\x01"), std::string::npos) << m;
+    }
+}
+
 TEST_F(VdbRobust, TruncatedUncompressedFileIsAnError) {
     BRUME_REQUIRE_SHARED_VDB();
     const std::string bytes = readBytes(real("oiio_sphere.vdb"));
