@@ -59,16 +59,17 @@ VkAccessFlags readWriteAccess(VkPipelineStageFlags stages) {
 
 // Accesses recorded since the last barrier; a pass that reads or writes what an earlier one wrote,
 // or writes what an earlier one read, waits for all of them (one global barrier: the chain is
-// serial anyway, and lavapipe runs one pass at a time).
+// serial anyway, and lavapipe runs one pass at a time). Accesses are to memory: a texel view's
+// reads are its buffer's (memoryOf).
 class Hazards {
 public:
-    void wrote(ResRef r, VkPipelineStageFlags s) { writes_.push_back({r, s}); }
-    void read(ResRef r, VkPipelineStageFlags s) { reads_.push_back({r, s}); }
+    void wrote(ResRef r, VkPipelineStageFlags s) { writes_.push_back({memoryOf(r), s}); }
+    void read(ResRef r, VkPipelineStageFlags s) { reads_.push_back({memoryOf(r), s}); }
     bool conflicts(const PassDecl& p) const {
         for (const auto& [r, s] : writes_)
-            if (p.reads.contains(r) || p.writes.contains(r)) return true;
+            if (touches(p.reads, r) || touches(p.writes, r)) return true;
         for (const auto& [r, s] : reads_)
-            if (p.writes.contains(r)) return true;
+            if (touches(p.writes, r)) return true;
         return false;
     }
     VkPipelineStageFlags writeStages() const { return stages(writes_); }
@@ -77,6 +78,11 @@ public:
 
 private:
     using Access = std::pair<ResRef, VkPipelineStageFlags>;
+    static bool touches(const ResList& list, ResRef memory) {
+        for (ResRef x : list)
+            if (memoryOf(x) == memory) return true;
+        return false;
+    }
     static VkPipelineStageFlags stages(const std::vector<Access>& v) {
         VkPipelineStageFlags s = 0;
         for (const auto& [r, st] : v) s |= st;
@@ -120,9 +126,15 @@ Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bo
     }
     // Filled with NaN before each frame under GpuOptions::poisonShadowVolume (tests).
     if (id == BufferId::shadowTransmittance) usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    if (hasTexelView(id)) usage |= VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     // Reset with vkCmdUpdateBuffer each frame, read as a dispatch's group count.
     if (d.kind == BufferKind::STORAGE_INDIRECT)
         usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    // About to be replaced: its texel views go first (ensureTexelViews makes them again over the
+    // new buffer).
+    if (!res[id].buffer || res[id].size < size)
+        for (const TexelViewDecl& v : kTexelViews)
+            if (v.buffer == id) res.texelViews[static_cast<size_t>(v.id)].reset();
     return ensureBuffer(res[id], size, usage, memory, d.name, dirty);
 }
 
@@ -237,6 +249,30 @@ Result<void> GpuRenderer::State::ensureScreenImages(glm::ivec2 size, bool& dirty
     return {};
 }
 
+// Each texel view over its buffer's whole range (at most the device's texel count: a buffer grown
+// past what prepare() asked for holds nothing read beyond it), made again when the buffer was
+// (ensureBuffer drops the old view).
+Result<void> GpuRenderer::State::ensureTexelViews(bool& dirty) {
+    for (const TexelViewDecl& d : kTexelViews) {
+        const Buffer& b = res[d.buffer];
+        BufferViewOwner& v = res.texelViews[static_cast<size_t>(d.id)];
+        if (v) continue;
+        const VkDeviceSize texel = d.format == ImageFormat::r32f ? sizeof(float) : sizeof(glm::vec4);
+        const VkDeviceSize limit = VkDeviceSize(device->limits().maxTexelBufferElements) * texel;
+        VkBufferViewCreateInfo info = vkStruct<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
+        info.buffer = b.buffer.get();
+        info.format = vkFormat(d.format);
+        info.offset = 0;
+        info.range = std::min(b.size, limit) / texel * texel;
+        VkBufferView view = VK_NULL_HANDLE;
+        BRUME_VK(vkCreateBufferView(device->vk(), &info, nullptr, &view), std::string("create the texel view ") + d.name);
+        device->name(view, VK_OBJECT_TYPE_BUFFER_VIEW, d.name);
+        v = BufferViewOwner(device->vk(), view);
+        dirty = true;
+    }
+    return {};
+}
+
 Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(dims.x) * static_cast<VkDeviceSize>(dims.y) *
                                static_cast<VkDeviceSize>(dims.z) * sizeof(glm::vec4);
@@ -289,6 +325,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     for (const DensityGridPtr& g : cs.grids) anyGrid = anyGrid || g != nullptr;
     const size_t entries = static_cast<size_t>(cells.x) * static_cast<size_t>(cells.y) * static_cast<size_t>(cells.z) *
                            std::max<size_t>(cs.lights.size(), 1) * (anyGrid ? 2 : 1);
+    // Its readers address it through the texel view shadowTexels (shared/frame_table.h).
+    if (entries > device->limits().maxTexelBufferElements)
+        return Error{"The fog transmittance volume needs " + std::to_string(entries) +
+                     " texels, more than this Vulkan device's texel buffers hold (" +
+                     std::to_string(device->limits().maxTexelBufferElements) +
+                     "); use fewer lights or a lower quality preset."};
     BRUME_TRY(ensureBuffer(BufferId::shadowTransmittance, entries * sizeof(glm::vec4), dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
     BRUME_TRY(chooseVariant(cs));
@@ -302,6 +344,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
+    BRUME_TRY(ensureTexelViews(dirty));
     if (dirty) {
         writeDescriptorBindings(*device, bindings.set, res);
         surfacesValid = false;  // a screen image or the distant table may be new

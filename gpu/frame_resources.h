@@ -25,6 +25,9 @@ namespace brume::gpu {
 
 struct FrameResources {
     std::array<Buffer, kBuffers.size()> buffers;
+    // The texel views of shared/frame_table.h over their buffers (none while a buffer is being
+    // replaced). Declared after the buffers: destroyed before them.
+    std::array<BufferViewOwner, kTexelViews.size()> texelViews;
     std::array<GpuImage, kImages.size()> images;
     // Each history pair's two images, kept across frames (unlike the others): recreated with the
     // froxel images, then undefined until a first transition (historyUndefined) and unread until a

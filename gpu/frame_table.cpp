@@ -12,6 +12,7 @@ namespace {
 using B = BufferId;
 using I = ImageId;
 using H = HistoryId;
+using T = TexelViewId;
 
 }  // namespace
 
@@ -26,7 +27,7 @@ const std::array<PassDecl, 11> kPasses{{
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
     // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::SurfacesChanged, Record::Geometry,
-     {B::frame, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps, B::volumes},
+     {B::frame, B::lights, B::lightClusters, T::shadowTexels, B::sunShadowMap, B::localShadowMaps, B::volumes},
      {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
@@ -37,12 +38,12 @@ const std::array<PassDecl, 11> kPasses{{
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Shapes, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
+     {B::frame, B::volumes, B::lights, B::lightClusters, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::Shapes, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, B::shadowTransmittance, B::sunShadowMap, B::localShadowMaps,
+     {B::frame, B::volumes, B::lights, B::lightClusters, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
@@ -97,14 +98,18 @@ std::array<BindingDecl, kBindingCount> bindingTable() {
     };
     // Buffers are named by their GLSL block, images by their variable.
 #define BRUME_CPP_BUFFER_BINDING(id, binding, kind, layout, qualifiers, block, body) \
-    put(binding, {binding, #block, descriptorType(BufferKind::kind), false, ImageFormat::rgba32f});
+    put(binding, {binding, #block, descriptorType(BufferKind::kind), false, ImageFormat::rgba32f, false});
     BRUME_FRAME_BUFFERS(BRUME_CPP_BUFFER_BINDING)
 #undef BRUME_CPP_BUFFER_BINDING
-    for (const ImageDecl& d : kImages) put(d.binding, {d.binding, d.name, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format});
+    for (const ImageDecl& d : kImages)
+        put(d.binding, {d.binding, d.name, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format, true});
     for (const HistoryDecl& d : kHistory) {
-        put(d.inBinding, {d.inBinding, d.inName, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format});
-        put(d.outBinding, {d.outBinding, d.outName, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format});
+        put(d.inBinding, {d.inBinding, d.inName, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format, true});
+        put(d.outBinding, {d.outBinding, d.outName, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, true, d.format, true});
     }
+    // Texel views reach the geometry pass too (it reads the fog transmittance volume's vdb layers).
+    for (const TexelViewDecl& d : kTexelViews)
+        put(d.binding, {d.binding, d.name, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, true, d.format, false});
     return t;
 }
 

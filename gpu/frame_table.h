@@ -2,8 +2,8 @@
 // and the pass table (frame_table.cpp) that names what each pass reads and writes. The executor
 // (frame_executor.cpp) derives the rest: creation and debug names, the descriptor layout, pool and
 // writes, layout transitions, barriers, labels, timestamps, the readback order, and one pipeline per
-// shader variant. Not a general render graph: the chain is fixed and short, nothing is aliased and
-// everything runs on one queue.
+// shader variant. Not a general render graph: the chain is fixed and short, nothing is aliased but
+// the texel views (each reads its buffer's memory) and everything runs on one queue.
 #pragma once
 
 #include <array>
@@ -36,6 +36,11 @@ enum class HistoryId : uint8_t {
     BRUME_FRAME_HISTORY(BRUME_CPP_HISTORY_ID)
 #undef BRUME_CPP_HISTORY_ID
 };
+enum class TexelViewId : uint8_t {
+#define BRUME_CPP_TEXEL_VIEW_ID(id, ...) id,
+    BRUME_FRAME_TEXEL_VIEWS(BRUME_CPP_TEXEL_VIEW_ID)
+#undef BRUME_CPP_TEXEL_VIEW_ID
+};
 
 // The table's kind, format and shape tokens, given meaning.
 enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBACK, STORAGE_INDIRECT };
@@ -59,6 +64,14 @@ struct ImageDecl {
     ImageFormat format;
     ImageShape shape;  // image3D: the froxel grid; image2D: the screen
     unsigned flags;    // image_flags
+};
+// A uniform texel buffer view of `buffer` (its whole range, as `format` texels).
+struct TexelViewDecl {
+    TexelViewId id;
+    const char* name;
+    int binding;
+    BufferId buffer;
+    ImageFormat format;
 };
 struct HistoryDecl {
     HistoryId id;
@@ -88,11 +101,25 @@ inline constexpr std::array kHistory{
     BRUME_FRAME_HISTORY(BRUME_CPP_HISTORY)
 #undef BRUME_CPP_HISTORY
 };
-inline constexpr int kBindingCount = static_cast<int>(kBuffers.size() + kImages.size() + 2 * kHistory.size());
+inline constexpr std::array kTexelViews{
+#define BRUME_CPP_TEXEL_VIEW(id, binding, buffer, format) \
+    TexelViewDecl{TexelViewId::id, #id, binding, BufferId::buffer, ImageFormat::format},
+    BRUME_FRAME_TEXEL_VIEWS(BRUME_CPP_TEXEL_VIEW)
+#undef BRUME_CPP_TEXEL_VIEW
+};
+inline constexpr int kBindingCount =
+    static_cast<int>(kBuffers.size() + kImages.size() + 2 * kHistory.size() + kTexelViews.size());
 
 constexpr const BufferDecl& decl(BufferId id) { return kBuffers[static_cast<size_t>(id)]; }
 constexpr const ImageDecl& decl(ImageId id) { return kImages[static_cast<size_t>(id)]; }
 constexpr const HistoryDecl& decl(HistoryId id) { return kHistory[static_cast<size_t>(id)]; }
+constexpr const TexelViewDecl& decl(TexelViewId id) { return kTexelViews[static_cast<size_t>(id)]; }
+// Whether some texel view reads buffer `id` (its usage then includes uniform texel buffer).
+constexpr bool hasTexelView(BufferId id) {
+    for (const TexelViewDecl& v : kTexelViews)
+        if (v.buffer == id) return true;
+    return false;
+}
 
 VkFormat vkFormat(ImageFormat f);
 VkDescriptorType descriptorType(BufferKind k);
@@ -103,27 +130,34 @@ bool hostWrites(BufferKind k);
 // shaders' reflection).
 struct BindingDecl {
     int binding;
-    const char* glslName;  // the variable (images) or block (buffers) name in GLSL
+    const char* glslName;  // the variable (images, texel views) or block (buffers) name in GLSL
     VkDescriptorType type;
-    bool image;
-    ImageFormat format;  // images only
+    bool image;            // a GLSL variable (storage image or texel view), else a block
+    ImageFormat format;    // images and texel views only
+    bool computeOnly;      // storage images: only compute stages see them
 };
 std::array<BindingDecl, kBindingCount> bindingTable();
 
 // ---- Passes ----
 
 // A resource a pass reads or writes. History: the pair's input (read) or output (written) side.
+// TexelView: read only; its memory is its buffer's (memoryOf).
 struct ResRef {
-    enum class Kind : uint8_t { None, Buffer, Image, HistoryIn, HistoryOut } kind = Kind::None;
+    enum class Kind : uint8_t { None, Buffer, Image, HistoryIn, HistoryOut, TexelView } kind = Kind::None;
     uint8_t index = 0;
     constexpr ResRef() = default;
     constexpr ResRef(BufferId b) : kind(Kind::Buffer), index(static_cast<uint8_t>(b)) {}
     constexpr ResRef(ImageId i) : kind(Kind::Image), index(static_cast<uint8_t>(i)) {}
+    constexpr ResRef(TexelViewId v) : kind(Kind::TexelView), index(static_cast<uint8_t>(v)) {}
     constexpr ResRef(Kind k, uint8_t i) : kind(k), index(i) {}
     constexpr bool operator==(const ResRef&) const = default;
 };
 constexpr ResRef historyIn(HistoryId h) { return {ResRef::Kind::HistoryIn, static_cast<uint8_t>(h)}; }
 constexpr ResRef historyOut(HistoryId h) { return {ResRef::Kind::HistoryOut, static_cast<uint8_t>(h)}; }
+// The resource whose memory r reads or writes: a texel view's buffer, else r itself (barriers).
+constexpr ResRef memoryOf(ResRef r) {
+    return r.kind == ResRef::Kind::TexelView ? ResRef(kTexelViews[r.index].buffer) : r;
+}
 
 struct ResList {
     std::array<ResRef, 12> items{};

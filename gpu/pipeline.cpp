@@ -18,9 +18,9 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
     for (const BindingDecl& d : bindingTable()) {
         if (d.binding < 0) return Error{"Brume's GPU binding table has a gap; this build of brume is broken."};
-        // Only the buffers reach the geometry pass: devices may allow as few as 4 storage images
-        // per graphics stage.
-        const VkShaderStageFlags stages = d.image ? VK_SHADER_STAGE_COMPUTE_BIT
+        // Only the buffers and texel views reach the geometry pass: devices may allow as few as 4
+        // storage images per graphics stage.
+        const VkShaderStageFlags stages = d.computeOnly ? VK_SHADER_STAGE_COMPUTE_BIT
                                                   : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT |
                                                         VK_SHADER_STAGE_FRAGMENT_BIT;
         bindings[static_cast<size_t>(d.binding)] = {static_cast<uint32_t>(d.binding), d.type, 1, stages, nullptr};
@@ -80,9 +80,10 @@ Result<DescriptorBindings> createDescriptorSet(const Device& device, std::span<c
 
 namespace {
 
-// Points binding `binding` at a buffer or an image view.
+// Points binding `binding` at a buffer, an image view or a texel buffer view.
 VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, VkDescriptorType type,
-                                     const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image) {
+                                     const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image,
+                                     const VkBufferView* texels = nullptr) {
     VkWriteDescriptorSet w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     w.dstSet = set;
     w.dstBinding = static_cast<uint32_t>(binding);
@@ -90,6 +91,7 @@ VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, VkDescrip
     w.descriptorType = type;
     w.pBufferInfo = buffer;
     w.pImageInfo = image;
+    w.pTexelBufferView = texels;
     return w;
 }
 
@@ -98,6 +100,7 @@ VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, int binding, VkDescrip
 void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const FrameResources& r) {
     std::array<VkDescriptorBufferInfo, kBuffers.size()> bufferInfos{};
     std::array<VkDescriptorImageInfo, kImages.size()> imageInfos{};
+    std::array<VkBufferView, kTexelViews.size()> texelViews{};
     std::vector<VkWriteDescriptorSet> writes;
     for (size_t i = 0; i < kBuffers.size(); ++i) {
         bufferInfos[i] = {r.buffers[i].buffer.get(), 0, VK_WHOLE_SIZE};
@@ -106,6 +109,11 @@ void writeDescriptorBindings(const Device& device, VkDescriptorSet set, const Fr
     for (size_t i = 0; i < kImages.size(); ++i) {
         imageInfos[i] = {VK_NULL_HANDLE, r.images[i].view.get(), VK_IMAGE_LAYOUT_GENERAL};
         writes.push_back(descriptorWrite(set, kImages[i].binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &imageInfos[i]));
+    }
+    for (size_t i = 0; i < kTexelViews.size(); ++i) {
+        texelViews[i] = r.texelViews[i].get();
+        writes.push_back(descriptorWrite(set, kTexelViews[i].binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, nullptr,
+                                         nullptr, &texelViews[i]));
     }
     vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }

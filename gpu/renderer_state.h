@@ -63,6 +63,7 @@ struct GpuRenderer::State {
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
+    Result<void> ensureTexelViews(bool& dirty);
     Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
     Result<void> chooseVariant(const CompiledScene& cs);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,

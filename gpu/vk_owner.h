@@ -43,6 +43,7 @@ template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCall
 using Owner = ParentOwner<VkDevice, Handle, Destroy>;
 
 using BufferOwner = Owner<VkBuffer, vkDestroyBuffer>;
+using BufferViewOwner = Owner<VkBufferView, vkDestroyBufferView>;
 using MemoryOwner = Owner<VkDeviceMemory, vkFreeMemory>;
 using ImageOwner = Owner<VkImage, vkDestroyImage>;
 using ImageViewOwner = Owner<VkImageView, vkDestroyImageView>;

@@ -24,9 +24,14 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
     return exp(-tau);
 }
 
+// Entry i of the fog transmittance volume, read through its texel view (shared/frame_table.h
+// shadowTexels): lavapipe gathers a texel buffer's texels as vectors, where it loads a storage
+// buffer's lane by lane (docs/performance.md, "blend").
+vec3 shadowEntry(int i) { return texelFetch(shadowTexels, i).rgb; }
+
 vec3 shadowCell(int light, ShadowLookup k, int x, int y, int z) {
     ivec3 c = ivec3(x != 0 ? k.upper.x : k.cell.x, y != 0 ? k.upper.y : k.cell.y, z != 0 ? k.upper.z : k.cell.z);
-    return shadowTransmittance[shadowVolumeIndex(k.cells, light, c)].rgb;
+    return shadowEntry(shadowVolumeIndex(k.cells, light, c));
 }
 
 // The 8 cells around lookup k (core: blendShadowCells).
@@ -58,10 +63,9 @@ ShadowCorners shadowCorners(ShadowLookup k) {
 // blendShadowCells with the corners of shadowCorners(k): the same cells, the same blend.
 ShadowBlend blendShadowCorners(int light, ShadowCorners c, vec3 weights) {
     int base = light * c.layer;
-    return shadowBlend(shadowTransmittance[base + c.lower.x].rgb, shadowTransmittance[base + c.lower.y].rgb,
-                       shadowTransmittance[base + c.lower.z].rgb, shadowTransmittance[base + c.lower.w].rgb,
-                       shadowTransmittance[base + c.upper.x].rgb, shadowTransmittance[base + c.upper.y].rgb,
-                       shadowTransmittance[base + c.upper.z].rgb, shadowTransmittance[base + c.upper.w].rgb, weights);
+    return shadowBlend(shadowEntry(base + c.lower.x), shadowEntry(base + c.lower.y), shadowEntry(base + c.lower.z),
+                       shadowEntry(base + c.lower.w), shadowEntry(base + c.upper.x), shadowEntry(base + c.upper.y),
+                       shadowEntry(base + c.upper.z), shadowEntry(base + c.upper.w), weights);
 }
 
 // Light `light`'s vdb layer blended at k (core: vdbLayerBlend; shared/vdb_shadow.h): 1 without vdb

@@ -9,6 +9,9 @@
 #define BRUME_GLSL_BUFFER(id, binding_, kind, layout_, qualifiers, block, body) \
     layout(layout_, set = 0, binding = binding_) qualifiers block { body };
 BRUME_FRAME_BUFFERS(BRUME_GLSL_BUFFER)
+// The format is the view's (C++), not the shader's: texelFetch returns vec4 whatever it is.
+#define BRUME_GLSL_TEXEL_VIEW(id, binding_, buffer, format) layout(set = 0, binding = binding_) uniform samplerBuffer id;
+BRUME_FRAME_TEXEL_VIEWS(BRUME_GLSL_TEXEL_VIEW)
 
 #ifdef BRUME_FROXEL_IMAGES
 #define BRUME_GLSL_IMAGE(id, binding_, format, type, flags) \

@@ -101,6 +101,7 @@ int bindingOf(ResRef r) {
         case ResRef::Kind::Image: return kImages[r.index].binding;
         case ResRef::Kind::HistoryIn: return kHistory[r.index].inBinding;
         case ResRef::Kind::HistoryOut: return kHistory[r.index].outBinding;
+        case ResRef::Kind::TexelView: return kTexelViews[r.index].binding;
         case ResRef::Kind::None: break;
     }
     return -1;
@@ -160,6 +161,29 @@ TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
                 EXPECT_TRUE(listed.count(b.binding)) << "pass '" << p.label << "' (" << file << ") uses " << b.name
                                                      << " but frame_table.cpp does not list it";
         }
+    }
+}
+
+// A texel view reads its buffer's memory: the executor's barriers follow memoryOf, so a pass reading
+// the view waits for the pass that wrote the buffer. Views are read only, and each view's buffer is
+// written by a pass before the first pass that reads the view (else the view reads nothing).
+TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
+    EXPECT_EQ(memoryOf(TexelViewId::shadowTexels), ResRef(BufferId::shadowTransmittance));
+    EXPECT_EQ(memoryOf(BufferId::lights), ResRef(BufferId::lights));
+    for (const TexelViewDecl& v : kTexelViews) {
+        const ResRef view(v.id);
+        bool written = hostWrites(decl(v.buffer).kind), read = false;
+        for (const PassDecl& p : kPasses) {
+            EXPECT_FALSE(p.writes.contains(view)) << p.label << " writes the texel view " << v.name;
+            EXPECT_FALSE(p.reads.contains(ResRef(v.buffer)) && p.reads.contains(view))
+                << p.label << " lists both " << v.name << " and its buffer";
+            if (p.reads.contains(view)) {
+                EXPECT_TRUE(written) << p.label << " reads " << v.name << " before any pass writes its buffer";
+                read = true;
+            }
+            if (p.writes.contains(ResRef(v.buffer))) written = true;
+        }
+        EXPECT_TRUE(read) << v.name << " is read by no pass";
     }
 }
 

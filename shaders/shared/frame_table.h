@@ -39,9 +39,10 @@
 //   volumes, lights     VolumeData[], LightData[] (at least one entry each)
 //   counters            FroxelCounters (bindings.h), counted by the light pass, read back by the host
 //   previousFrame       FrameUniforms of the previous frame (temporal pass)
-//   shadowTransmittance vec4[]: the fog transmittance volume (shadow_volume.h shadowVolumeIndex); a
-//                       buffer, not an image: lavapipe's imageLoad is ~3x dearer, and the geometry
-//                       pass reads it
+//   shadowTransmittance vec4[]: the fog transmittance volume (shadow_volume.h shadowVolumeIndex),
+//                       written by the shadow volume pass; its readers go through the texel view
+//                       shadowTexels (below). A buffer, not an image: lavapipe's imageLoad is ~3x
+//                       dearer, and the geometry pass reads it
 //   vdbGrids            uint[]: every vdb volume's NanoVDB grid back to back (VolumeData.kind.y: byte
 //                       offset), read with PNanoVDB
 //   lightClusters       int[]: light lists per cluster and the light reach record (clusters.h)
@@ -53,6 +54,16 @@
 //                       by the distant fog pass, read by the composite
 //   influence           InfluenceHeader, then InfluenceSample[] (influence.h): the influencers and
 //                       their wakes at the scene time (core/influence.h), read by voxelize
+
+// Uniform texel buffer views of the buffers above, X(id, binding, viewed buffer, texel format): GLSL
+// reads them with texelFetch (a samplerBuffer); they alias the buffer's memory, so the executor
+// orders their reads after the buffer's writes (a pass lists the view in its reads). Why a view:
+// lavapipe loads a storage buffer lane by lane (8 guarded scalar loads per component), a texel
+// buffer's texelFetch through its sampler's vector gather (docs/performance.md, "blend").
+//   shadowTexels        shadowTransmittance as rgba32f texels (fog_shadow.glsl shadowCell): the light
+//                       passes' and the surfaces' reads of the fog transmittance volume
+#define BRUME_FRAME_TEXEL_VIEWS(X) \
+    X(shadowTexels, 26, shadowTransmittance, rgba32f)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
