@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -185,6 +186,74 @@ TEST_F(VdbRobust, ByteFlipsInBytes256To511GiveAnErrorOrACleanLoad) {
     std::vector<FlipCase> cases;
     for (size_t offset = 256; offset < 512; ++offset) cases.push_back(writeFlip(dir_, "oiio_sphere.vdb", bytes, offset, offset));
     expectCleanOutcomes(cases);
+}
+
+namespace {
+
+// Peak resident memory [KiB] of a shell command's processes, measured in a child of its own (the
+// counts of RUSAGE_CHILDREN start afresh in a new process).
+long peakKib(const std::string& command) {
+    int pipeFd[2];
+    if (pipe(pipeFd) != 0) return -1;
+    const pid_t pid = fork();
+    if (pid == 0) {
+        close(pipeFd[0]);
+        (void)std::system(command.c_str());
+        rusage usage{};
+        getrusage(RUSAGE_CHILDREN, &usage);
+        const long peak = usage.ru_maxrss;
+        (void)!write(pipeFd[1], &peak, sizeof peak);
+        _exit(0);
+    }
+    close(pipeFd[1]);
+    long peak = -1;
+    if (read(pipeFd[0], &peak, sizeof peak) != static_cast<ssize_t>(sizeof peak)) peak = -1;
+    close(pipeFd[0]);
+    waitpid(pid, nullptr, 0);
+    return peak;
+}
+
+}  // namespace
+
+// A metadata length that runs past the end of the file: byte 414 of oiio_sphere.vdb flipped (a value
+// of 1,069,128,089 bytes) and an 816-byte file from fuzzing (a value of 303,174,162 bytes).
+// OpenVDB's own file stream read on past the end with stale lengths, building strings and buffers of
+// up to 1 GB again and again (330 MB and 1-3 s in a normal build; 2 GB and 9 s, or ASan's
+// out-of-memory exit, under ASan). Read through the bounded stream, each length is checked against
+// the bytes left before anything is allocated: one sentence, and the reader's peak memory no more
+// than a healthy read of the intact file.
+TEST_F(VdbRobust, AMetadataLengthPastTheEndOfTheFileIsRefusedBeforeAnythingIsAllocated) {
+    BRUME_REQUIRE_SHARED_VDB();
+    const fs::path flip = dir_ / "flip414.vdb";
+    writeBytes(flip, flipped(readBytes(real("oiio_sphere.vdb")), 414));
+    const fs::path fuzzed = fs::path(BRUME_SOURCE_DIR) / "tests/fuzz/corpus/vdb_reader/stale_metadata_length.vdb";
+    ASSERT_TRUE(fs::exists(fuzzed));
+    fs::create_directories(dir_ / "out");
+    auto reader = [&](const std::string& mode, const std::string& file) {
+        return "'" + kReader + "' " + mode + " '" + file + "' " + (mode == "load" ? "density " : "") + "67108864 '" +
+               (dir_ / "out").string() + "' >/dev/null 2>&1";
+    };
+    const long healthy = peakKib(reader("load", real("oiio_sphere.vdb")));
+    ASSERT_GT(healthy, 0);
+    for (const fs::path& file : {flip, fuzzed}) {
+        Result<VdbLoad> load = loadVdbDensity(file.string(), {});
+        ASSERT_FALSE(load.ok()) << file;
+        Result<std::vector<VdbGridInfo>> info = inspectVdb(file.string(), {});
+        ASSERT_FALSE(info.ok()) << file;
+        for (const std::string& m : {load.error().message, info.error().message}) {
+            EXPECT_EQ(m.rfind(file.string() + ": not a readable OpenVDB file (", 0), 0u) << m;
+            EXPECT_NE(m.find("a metadata value of "), std::string::npos) << m;
+            EXPECT_NE(m.find("runs past the end of the file (it is truncated or corrupt)"), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+        for (const std::string mode : {"load", "info"}) {
+            const long peak = peakKib(reader(mode, file.string()));
+            std::printf("%s %s: reader peak %ld KiB (intact file: %ld KiB)\n", file.filename().c_str(), mode.c_str(),
+                        peak, healthy);
+            EXPECT_GT(peak, 0);
+            EXPECT_LE(peak, healthy + 16 * 1024) << file << " " << mode;
+        }
+    }
 }
 
 // oiio_sphere.vdb is uncompressed: cut in half, OpenVDB's own file reader reads zeros past the end
