@@ -198,9 +198,10 @@ private:
         seek(here() + n);
     }
 
-    // MetaMap::readMeta's format: count, then name, type name, byte count and value. Values of
-    // types OpenVDB does not know, and the delayed-load metadata (io::File drops it too), are
-    // skipped: Brume reads neither. A fixed-size value must state its own size.
+    // MetaMap::readMeta's format: count, then name, type name, byte count and value, consumed as it
+    // consumes them: a value of a fixed-size type is read at its own size (the stated count is not
+    // used), a string as long as it says; values of types OpenVDB does not know, and the delayed-load
+    // metadata (io::File drops it too), are skipped over the stated count: Brume reads neither.
     void readMetaMap(openvdb::MetaMap& out) {
         const uint32_t count = readCount();
         for (uint32_t i = 0; i < count; ++i) {
@@ -208,18 +209,17 @@ private:
             const std::string type = readName();
             const std::streamoff sizeAt = here();
             const uint32_t bytes = readCount();
-            require(bytes, "a metadata value");
             if (openvdb::Metadata::isRegisteredType(type) && type != openvdb::io::DelayedLoadMetadata::staticTypeName()) {
                 openvdb::Metadata::Ptr value = openvdb::Metadata::createMetadata(type);
                 const openvdb::Index32 fixed = value->size();  // 0: a string, as long as it says
-                if (fixed != 0 && fixed != bytes)
-                    throw std::runtime_error("metadata '" + name + "' of type " + type + " states " +
-                                             std::to_string(bytes) + " bytes where it has " + std::to_string(fixed));
+                require(fixed != 0 ? fixed : bytes, "a metadata value");
                 seek(sizeAt);
                 value->read(in_);
                 out.insertMeta(name, *value);
+            } else {
+                require(bytes, "a metadata value");
+                seek(sizeAt + static_cast<std::streamoff>(sizeof(uint32_t)) + bytes);
             }
-            seek(sizeAt + static_cast<std::streamoff>(sizeof(uint32_t)) + bytes);
         }
     }
 

@@ -4,6 +4,7 @@
 // std::istream, so here it reads from a buffer that throws at the end of the file, which makes every
 // truncation an error wherever the cut is, and whose byte count is the reading progress. (io::Stream
 // was once seen to spin on truncated files: that was reading zeros past the end; it now throws.)
+// The metadata read (io/vdb_import.cpp, MetadataReader) seeks in it to the grids' offsets.
 #pragma once
 
 #include <cstdio>
