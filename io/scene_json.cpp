@@ -19,6 +19,7 @@
 
 #include "core/animate.h"
 #include "io/atomic_file.h"
+#include "io/one_line.h"
 
 namespace brume {
 namespace {
@@ -85,18 +86,7 @@ std::string describe(const json& v) {
 // Control characters in a key are written escaped (cam\nt), so an error naming it stays one
 // line (found by tests/fuzz/fuzz_scene_json and fuzz_preset_json: a key holding a newline).
 std::string child(const std::string& path, std::string_view key) {
-    std::string k;
-    for (const char c : key) {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '\n') k += "\\n";
-        else if (c == '\t') k += "\\t";
-        else if (u < 0x20 || u == 0x7f) {
-            static const char* hex = "0123456789abcdef";
-            k += "\\x";
-            k += hex[u >> 4];
-            k += hex[u & 15];
-        } else k += c;
-    }
+    const std::string k = escapeControlCharacters(key);
     return path.empty() ? k : path + "." + k;
 }
 

@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh_import.h"
+#include "one_line.h"
 #include "vdb_import.h"
 #include "vdb_inprocess.h"
 
@@ -112,7 +113,8 @@ bool toDescriptors(const fs::path& dir) { return dir == kToDescriptors; }
 // Last, by rename (or, to a descriptor, read by the parent only after a clean exit): the parent
 // never sees half a result.
 bool writeResult(const fs::path& dir, const json& j) {
-    const std::string text = j.dump();
+    // Invalid UTF-8 (an OpenVDB message quoting bytes of a corrupt file) is replaced, not thrown on.
+    const std::string text = j.dump(-1, ' ', false, json::error_handler_t::replace);
     if (toDescriptors(dir)) return writeAll(kResultFd, text.data(), text.size());
     return writeFile(dir / "result.json.tmp", text.data(), text.size()) &&
            std::rename((dir / "result.json.tmp").c_str(), (dir / "result.json").c_str()) == 0;
@@ -226,7 +228,7 @@ int vdbReaderMain(int argc, char** argv) {
     try {
         result = load ? runLoad(file, argv[3], limit, dir) : mesh ? runMesh(file, argv[3], limit, dir) : runInfo(file, limit);
     } catch (const std::exception& e) {
-        result = {{"ok", false}, {"error", file + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."}};
+        result = {{"ok", false}, {"error", file + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."}};
     }
     return writeResult(dir, result) ? 0 : 3;
 }
@@ -364,7 +366,7 @@ Result<json> runReader(const std::string& file, std::vector<std::string> args, c
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return Error{crashed(file)};
     try {
         json result = json::parse(readAll(out.result()));
-        if (!result.at("ok").get<bool>()) return Error{result.at("error").get<std::string>()};
+        if (!result.at("ok").get<bool>()) return Error{escapeControlCharacters(result.at("error").get<std::string>())};
         return result;
     } catch (const std::exception&) {
         return Error{crashed(file)};
