@@ -250,6 +250,7 @@ struct CameraRay {
     glm::dvec3 dir;  // unit
     double tEnd;     // first surface hit or the far plane
     SurfaceHit hit;
+    double pixelAngle;  // [rad] between this pixel's ray and its neighbours' (the smaller): footprint = t x this
 };
 
 // Renders single pixels; shared read-only by the worker threads.
@@ -257,7 +258,15 @@ class Tracer {
 public:
     Tracer(const Scene& scene, const CompiledScene& cs, const GeometrySet& geo, const shd::FrameUniforms& frame,
            const StepParams& params)
-        : scene_(scene), cs_(cs), geo_(geo), frame_(frame), params_(params) {}
+        : scene_(scene), cs_(cs), geo_(geo), frame_(frame), params_(params) {
+        for (size_t i = 0; i < cs_.volumes.size(); ++i) {
+            const shd::VolumeData& v = cs_.volumes[i];
+            glm::vec2 m(1.0f);
+            if (i < cs_.textures.size() && cs_.textures[i]) m.x = layerMeanFactor(*cs_.textures[i], v.textureParams, v.textureMin, v.textureSize);
+            if (i < cs_.details.size() && cs_.details[i]) m.y = layerMeanFactor(*cs_.details[i], v.detailParams, v.detailMin, v.detailSize);
+            textureMeans_.push_back(m);
+        }
+    }
 
     glm::vec3 radiance(int x, int y) const {
         const CameraRay ray = cameraRay(x, y);
@@ -276,6 +285,11 @@ private:
         const glm::vec3 view = shd::viewRayFromPixel(glm::vec2(float(x) + 0.5f, float(y) + 0.5f), frame_);
         const double viewLen = glm::length(glm::dvec3(view));
         CameraRay r;
+        auto angleTo = [&](float px, float py) {
+            const glm::dvec3 a(view), b(shd::viewRayFromPixel(glm::vec2(px, py), frame_));
+            return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+        };
+        r.pixelAngle = std::min(angleTo(float(x) + 1.5f, float(y) + 0.5f), angleTo(float(x) + 0.5f, float(y) + 1.5f));
         r.origin = glm::dvec3(scene_.camera.position);
         r.dir = glm::normalize(glm::dvec3(glm::mat3(frame_.worldFromView) * view));
         const double tFar = static_cast<double>(scene_.camera.far) * viewLen;
@@ -410,17 +424,55 @@ private:
         for (size_t i = 0; i < cs_.volumes.size(); ++i) {
             const shd::VolumeData& v = cs_.volumes[i];
             if (!shd::insideBounds(v, p)) continue;
-            if (v.kind.x == shd::VOLUME_DEPTH) {
-                const float mean = static_cast<float>(depthMean(v, t, t + h));
-                m = shd::addMedium(m, v, mean > 0.0f ? mean * densityTextureFactor(cs_, i, p) : 0.0f);
-            } else {
-                m = shd::addMedium(m, v, volumeDensity(cs_, i, p));
-            }
+            const float density = v.kind.x == shd::VOLUME_DEPTH ? static_cast<float>(depthMean(v, t, t + h))
+                                                                : plainVolumeDensity(cs_, i, p);
+            const double footprint = ray.pixelAngle * (t + 0.5 * h);
+            m = shd::addMedium(m, v, density > 0.0f ? density * textureFactorSeen(i, p, footprint) : density);
         }
         // Influencers thin the fog the camera sees, not the fog shadows (fogTransmittance).
         if (shd::insideInfluenceBounds(cs_.influence.header, p)) m = shd::influenceScaleMedia(m, influenceFactor(cs_.influence, p));
         return m;
     }
+
+    // A volume's density texture factor as a pixel sees it at footprint (the pixel's width at p): each
+    // layer is sampled where one of its tiles is wider than the footprint, and is its mean over a tile
+    // beyond (docs/reference.md "Density textures").
+    float textureFactorSeen(size_t i, glm::vec3 p, double footprint) const {
+        if (i >= cs_.textures.size() || !cs_.textures[i]) return 1.0f;
+        const shd::VolumeData& v = cs_.volumes[i];
+        float factor = textureMeans_[i].x;
+        if (footprint < tileSize(v.textureParams)) {
+            const shd::TextureCell c = shd::textureCell(v, p, cs_.time);
+            factor = shd::textureDensityFactor(v, cs_.textures[i]->sampleCorners(c.lo, c.hi, c.frac, v.textureParams.w));
+        }
+        if (i < cs_.details.size() && cs_.details[i]) {
+            float detail = textureMeans_[i].y;
+            if (footprint < tileSize(v.detailParams)) {
+                const shd::TextureCell c = shd::detailCell(v, p, cs_.time);
+                detail = shd::detailDensityFactor(v, cs_.details[i]->sampleCorners(c.lo, c.hi, c.frac, v.detailParams.w));
+            }
+            factor *= detail;
+        }
+        return factor;
+    }
+
+    // A layer's factor max(0, 1 + strength (value / mean - 1)) averaged over a tile: exactly 1 when
+    // no voxel's factor is held at 0 (the trilinear field's extremes are at voxels, and it keeps the
+    // voxels' mean); else the voxels' mean of the held factor, an upper bound (the hold is convex).
+    static float layerMeanFactor(const DensityGrid& grid, glm::vec4 params, glm::ivec4 boxMin, glm::ivec4 boxSize) {
+        if (params.y <= 1.0f) return 1.0f;  // 1 + strength (value / mean - 1) >= 1 - strength >= 0
+        double sum = 0.0;
+        const glm::ivec3 n(boxSize), o(boxMin);
+        for (int k = 0; k < n.z; ++k)
+            for (int j = 0; j < n.y; ++j)
+                for (int i = 0; i < n.x; ++i) {
+                    const glm::ivec3 c = o + glm::ivec3(i, j, k);  // a corner: the voxel's shaped value
+                    sum += static_cast<double>(shd::textureLayerFactor(params, grid.sampleCorners(c, c, glm::vec3(0.0f), params.w)));
+                }
+        return static_cast<float>(sum / (static_cast<double>(n.x) * n.y * n.z));
+    }
+
+    static double tileSize(glm::vec4 params) { return 1.0 / static_cast<double>(params.x); }
 
     // Mean of the depth fog density over camera-ray distances [t0, t1].
     static double depthMean(const shd::VolumeData& v, double t0, double t1) {
@@ -459,9 +511,19 @@ private:
         for (const shd::VolumeData& v : cs_.volumes) {
             if (!shd::insideBounds(v, p)) continue;
             h = std::min(h, static_cast<double>(params_.density_step) * densityScale(v, ray, p));
-            // A density texture's trilinear field changes over one of its voxels, like a grid's.
-            if (shd::hasDensityTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v.textureParams, v.textureSize));
-            if (shd::hasDetailTexture(v)) h = std::min(h, static_cast<double>(params_.density_step) * textureVoxel(v.detailParams, v.detailSize));
+            // A density texture's trilinear field changes over one of its voxels, like a grid's, where a
+            // voxel is at least a pixel wide (a quarter voxel per step); where it is narrower the steps
+            // grow as footprint^2 / (4 voxel) to one footprint (each midpoint samples the texture, an
+            // estimate of its average over the footprint, which is what the pixel sees), and where a
+            // whole tile is narrower the layer is its mean (textureFactorSeen): no limit.
+            const double footprint = ray.pixelAngle * t, ds = static_cast<double>(params_.density_step);
+            auto layer = [&](glm::vec4 texParams, glm::ivec4 size) {
+                const double voxel = textureVoxel(texParams, size);
+                if (footprint < tileSize(texParams))
+                    h = std::min(h, std::max(ds * voxel, std::min(footprint, ds * footprint * footprint / voxel)));
+            };
+            if (shd::hasDensityTexture(v)) layer(v.textureParams, v.textureSize);
+            if (shd::hasDetailTexture(v)) layer(v.detailParams, v.detailSize);
         }
         return h;
     }
@@ -528,6 +590,7 @@ private:
     const GeometrySet& geo_;
     const shd::FrameUniforms& frame_;
     const StepParams& params_;
+    std::vector<glm::vec2> textureMeans_;  // per volume: its texture's and detail's mean factor over a tile
 };
 
 }  // namespace

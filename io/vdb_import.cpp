@@ -13,6 +13,7 @@
 
 
 #include <openvdb/openvdb.h>
+#include <openvdb/io/DelayedLoadMetadata.h>
 #include <openvdb/io/Stream.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
@@ -103,22 +104,149 @@ Result<FileGrids> readAll(const std::string& path, const std::function<void(cons
     return out;
 }
 
-// Grid names, metadata and transforms only: what the grid choice and the memory cap need, before any
-// topology or voxel buffer is read.
+// Grid names, metadata and transforms only (what the grid choice and the memory cap need), read as
+// io::File::readAllGridMetadata reads them but through VdbFileBuf, with every length the file states
+// checked against the bytes left in it before anything is allocated. OpenVDB's own file stream
+// fails quietly at the end of a corrupt file and its readers go on with stale lengths: one flipped
+// byte had them build ~1 GB strings again and again (docs/reliability.md, relref).
+class MetadataReader : public openvdb::io::Archive {
+public:
+    MetadataReader(std::istream& in, uint64_t fileSize) : in_(in), size_(fileSize) {}
+
+    // Every grid in file order with an empty tree; null when the file has no grid offsets (written
+    // to a stream: its grids can only be read whole).
+    openvdb::GridPtrVecPtr read() {
+        readHeader(in_);
+        if (fileVersion() < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
+            throw std::runtime_error("VDB file version " + std::to_string(fileVersion()) +
+                                     " is older than 222, which OpenVDB no longer reads");
+        auto streamMeta = std::make_shared<openvdb::io::StreamMetadata>();
+        streamMeta->setSeekable(true);
+        openvdb::io::setStreamMetadataPtr(in_, streamMeta, /*transfer=*/false);
+        setFormatVersion(in_);
+        setLibraryVersion(in_);
+        setDataCompression(in_);
+        openvdb::MetaMap fileMeta;
+        readMetaMap(fileMeta);
+        if (!inputHasGridOffsets()) return nullptr;
+        auto grids = std::make_shared<openvdb::GridPtrVec>();
+        const int32_t count = readGridCount(in_);
+        for (int32_t i = 0; i < count; ++i) {
+            // The descriptor: unique name, type, instance parent, then the grid's offsets.
+            const std::streamoff at = here();
+            skipName();
+            skipName();
+            if (openvdb::io::getFormatVersion(in_) >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING) skipName();
+            seek(at);
+            openvdb::io::GridDescriptor gd;
+            openvdb::GridBase::Ptr grid = gd.read(in_);
+            // Each grid lies after its descriptor and before the next: the loop moves forward only.
+            if (gd.getGridPos() < here() || gd.getEndPos() <= gd.getGridPos())
+                throw std::runtime_error("grid " + std::to_string(i) + " has offsets out of order (it is corrupt)");
+            gd.seekToGrid(in_);
+            ok();
+            readGridCompression(in_);
+            readMetaMap(*grid);
+            if ((*grid)[openvdb::GridBase::META_FILE_DELAYED_LOAD]) grid->removeMeta(openvdb::GridBase::META_FILE_DELAYED_LOAD);
+            const std::streamoff transform = here();
+            skipName();  // the map's type name
+            seek(transform);
+            grid->readTransform(in_);
+            grids->push_back(grid);
+            if (i + 1 < count) {  // the next descriptor; the last grid's end is the full read's business
+                gd.seekToEnd(in_);
+                ok();
+            }
+        }
+        return grids;
+    }
+
+private:
+    std::streamoff here() { return static_cast<std::streamoff>(in_.tellg()); }
+    void seek(std::streamoff at) {
+        in_.seekg(at);
+        ok();
+    }
+    // A failed seek sets failbit quietly, and every read after it would leave its value as it was.
+    void ok() {
+        if (!in_) throw std::runtime_error("an offset outside the file (it is truncated or corrupt)");
+    }
+
+    uint32_t readCount() {
+        uint32_t n = 0;
+        in_.read(reinterpret_cast<char*>(&n), sizeof n);
+        return n;
+    }
+
+    // A length the file states: refused when it runs past the end of the file.
+    void require(uint64_t bytes, const char* what) {
+        const std::streamoff at = here();
+        if (at < 0 || bytes > size_ - std::min<uint64_t>(size_, static_cast<uint64_t>(at)))
+            throw std::runtime_error(std::string(what) + " of " + std::to_string(bytes) + " bytes at offset " +
+                                     std::to_string(at) + " runs past the end of the file (it is truncated or corrupt)");
+    }
+
+    std::string readName() {
+        const uint32_t n = readCount();
+        require(n, "a name");
+        std::string s(n, '\0');
+        if (n > 0) in_.read(s.data(), n);
+        return s;
+    }
+    void skipName() {
+        const uint32_t n = readCount();
+        require(n, "a name");
+        seek(here() + n);
+    }
+
+    // MetaMap::readMeta's format: count, then name, type name, byte count and value, consumed as it
+    // consumes them: a value of a fixed-size type is read at its own size (the stated count is not
+    // used), a string as long as it says; values of types OpenVDB does not know, and the delayed-load
+    // metadata (io::File drops it too), are skipped over the stated count: Brume reads neither.
+    void readMetaMap(openvdb::MetaMap& out) {
+        const uint32_t count = readCount();
+        for (uint32_t i = 0; i < count; ++i) {
+            const std::string name = readName();
+            const std::string type = readName();
+            const std::streamoff sizeAt = here();
+            const uint32_t bytes = readCount();
+            if (openvdb::Metadata::isRegisteredType(type) && type != openvdb::io::DelayedLoadMetadata::staticTypeName()) {
+                openvdb::Metadata::Ptr value = openvdb::Metadata::createMetadata(type);
+                const openvdb::Index32 fixed = value->size();  // 0: a string, as long as it says
+                require(fixed != 0 ? fixed : bytes, "a metadata value");
+                seek(sizeAt);
+                value->read(in_);
+                out.insertMeta(name, *value);
+            } else {
+                require(bytes, "a metadata value");
+                seek(sizeAt + static_cast<std::streamoff>(sizeof(uint32_t)) + bytes);
+            }
+        }
+    }
+
+    std::istream& in_;
+    uint64_t size_;
+};
+
 Result<FileGrids> readMetadata(const std::string& path) {
     FileGrids out;
     try {
         initOpenVdb();
-        openvdb::io::File file(path);
-        file.open(/*delayLoad=*/false);
-        out.grids = file.readAllGridMetadata();  // seeks: reads no topology and no voxel buffer
-        file.close();
+        VdbFileBuf buf(path, {});
+        if (!buf.isOpen()) throw std::runtime_error("cannot open it");
+        std::istream in(&buf);
+        in.exceptions(std::ios::badbit);  // the buffer's exception at the end of the file reaches us
+        out.grids = MetadataReader(in, buf.fileSize()).read();
+        if (!out.grids) {
+            // No grid offsets: the grids can only be read whole (as io::File::open did for such files).
+            out.grids = std::make_shared<openvdb::GridPtrVec>();
+            for (const auto& g : *readGrids(path, {})) out.grids->push_back(g->copyGridWithNewTree());
+        }
     } catch (const std::exception& e) {
         return Error{path + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."};
     } catch (...) {
         return Error{path + ": not a readable OpenVDB file."};
     }
-    if (!out.grids) return Error{path + ": not a readable OpenVDB file."};
     nameGrids(out);
     return out;
 }

@@ -188,6 +188,68 @@ TEST_F(VdbRobust, ByteFlipsInBytes256To511GiveAnErrorOrACleanLoad) {
     expectCleanOutcomes(cases);
 }
 
+namespace {
+
+// Peak resident memory [KiB] of the reader run with `args`, as GNU time reports it (wait4 on the
+// reader itself). Measured from the test process, a reader's peak would include its parent's: a
+// forked or vforked child starts with the parent's resident pages, and exec keeps that peak.
+long readerPeakKib(const std::string& args, const fs::path& out) {
+    // Descriptor 3 is the reader's progress pipe: closed here, not GNU time's output file.
+    const std::string command =
+        "/usr/bin/time -f %M -o '" + out.string() + "' '" + kReader + "' " + args + " >/dev/null 2>&1 3>&-";
+    if (std::system(command.c_str()) == -1) return -1;
+    long peak = -1;
+    std::ifstream in(out);
+    for (std::string word; in >> word;) peak = std::atol(word.c_str());  // the last line: %M
+    return peak;
+}
+
+}  // namespace
+
+// A metadata length that runs past the end of the file: byte 414 of oiio_sphere.vdb flipped (a value
+// of 1,069,128,089 bytes) and two files from fuzzing: 816 bytes (a value of 303,174,162 bytes) and
+// 9,973 bytes (a name of 134,217,732 bytes).
+// OpenVDB's own file stream read on past the end with stale lengths, building strings and buffers of
+// up to 1 GB again and again (330-430 MB and 1-3 s in a normal build; 0.8-2 GB and 9-22 s, or ASan's
+// out-of-memory exit, under ASan). Read through the bounded stream, each length is checked against
+// the bytes left before anything is allocated: one sentence, and the reader's peak memory no more
+// than a healthy read of the intact file (+ 16 MiB).
+TEST_F(VdbRobust, AMetadataLengthPastTheEndOfTheFileIsRefusedBeforeAnythingIsAllocated) {
+    BRUME_REQUIRE_SHARED_VDB();
+    const fs::path flip = dir_ / "flip414.vdb";
+    writeBytes(flip, flipped(readBytes(real("oiio_sphere.vdb")), 414));
+    const fs::path corpus = fs::path(BRUME_SOURCE_DIR) / "tests/fuzz/corpus/vdb_reader";
+    const fs::path fuzzed = corpus / "stale_metadata_length.vdb", fuzzedName = corpus / "stale_name_length.vdb";
+    ASSERT_TRUE(fs::exists(fuzzed) && fs::exists(fuzzedName));
+    fs::create_directories(dir_ / "out");
+    ASSERT_TRUE(fs::exists("/usr/bin/time")) << "the test measures the reader's memory with GNU time (package time)";
+    auto reader = [&](const std::string& mode, const std::string& file) {
+        return readerPeakKib(mode + " '" + file + "' " + (mode == "load" ? "density " : "") + "67108864 '" +
+                                 (dir_ / "out").string() + "'",
+                             dir_ / "peak.txt");
+    };
+    const long healthy = reader("load", real("oiio_sphere.vdb"));
+    ASSERT_GT(healthy, 0);
+    for (const fs::path& file : {flip, fuzzed, fuzzedName}) {
+        Result<VdbLoad> load = loadVdbDensity(file.string(), {});
+        ASSERT_FALSE(load.ok()) << file;
+        Result<std::vector<VdbGridInfo>> info = inspectVdb(file.string(), {});
+        ASSERT_FALSE(info.ok()) << file;
+        for (const std::string& m : {load.error().message, info.error().message}) {
+            EXPECT_EQ(m.rfind(file.string() + ": not a readable OpenVDB file (", 0), 0u) << m;
+            EXPECT_NE(m.find("runs past the end of the file (it is truncated or corrupt)"), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+        for (const std::string mode : {"load", "info"}) {
+            const long peak = reader(mode, file.string());
+            std::printf("%s %s: reader peak %ld KiB (intact file: %ld KiB)\n", file.filename().c_str(), mode.c_str(),
+                        peak, healthy);
+            EXPECT_GT(peak, 0);
+            EXPECT_LE(peak, healthy + 16 * 1024) << file << " " << mode;
+        }
+    }
+}
+
 // oiio_sphere.vdb is uncompressed: cut in half, OpenVDB's own file reader reads zeros past the end
 // and loaded 6,521 of its 9,047 voxels silently; a cut anywhere, even in the last voxel values, is
 // now an error (io/vdb_stream.h).
