@@ -187,7 +187,8 @@ std::vector<Case> extremeCases() {
         const CompiledScene cs = compileScene(s);
         const FroxelSettings fs = resolveFroxelSettings(s, Quality::High);
         const shd::FrameUniforms f = makeFrameUniforms(s, cs, kWidth, kHeight, fs);
-        const glm::vec3 coord(std::floor(f.froxelDims.x * 0.5f), std::floor(f.froxelDims.y * 0.5f), 10.0f);
+        const glm::vec3 coord(std::floor(static_cast<float>(f.froxelDims.x) * 0.5f),
+                              std::floor(static_cast<float>(f.froxelDims.y) * 0.5f), 10.0f);
         s.lights = {test::pointLight(shd::worldFromFroxelCoord(coord + glm::vec3(f.jitter), f), 0.0f, 100.0f)};
         cases.push_back({"point light at a froxel sample point", s, false});
     }
