@@ -257,7 +257,7 @@ Result<void> GpuRenderer::State::ensureTexelViews(bool& dirty) {
         const Buffer& b = res[d.buffer];
         BufferViewOwner& v = res.texelViews[static_cast<size_t>(d.id)];
         if (v) continue;
-        const VkDeviceSize texel = d.format == ImageFormat::r32f ? sizeof(float) : sizeof(glm::vec4);
+        const VkDeviceSize texel = texelBytes(d.format);
         const VkDeviceSize limit = VkDeviceSize(device->limits().maxTexelBufferElements) * texel;
         VkBufferViewCreateInfo info = vkStruct<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
         info.buffer = b.buffer.get();

@@ -38,12 +38,12 @@ const std::array<PassDecl, 11> kPasses{{
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Shapes, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
+     {B::frame, B::volumes, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::Shapes, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
+     {B::frame, B::volumes, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
       I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
@@ -81,7 +81,17 @@ const std::array<PassDecl, 11> kPasses{{
 // clang-format on
 
 VkFormat vkFormat(ImageFormat f) {
-    return f == ImageFormat::r32f ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+    switch (f) {
+        case ImageFormat::r32f: return VK_FORMAT_R32_SFLOAT;
+        case ImageFormat::r32i: return VK_FORMAT_R32_SINT;
+        case ImageFormat::rgba32i: return VK_FORMAT_R32G32B32A32_SINT;
+        case ImageFormat::rgba32f: break;
+    }
+    return VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+VkDeviceSize texelBytes(ImageFormat f) {
+    return f == ImageFormat::r32f || f == ImageFormat::r32i ? 4 : 16;
 }
 
 VkDescriptorType descriptorType(BufferKind k) {

@@ -44,7 +44,8 @@ enum class TexelViewId : uint8_t {
 
 // The table's kind, format and shape tokens, given meaning.
 enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBACK, STORAGE_INDIRECT };
-enum class ImageFormat : uint8_t { rgba32f, r32f };
+// r32i and rgba32i: texel views only (lightClusters, lights as their stored bits).
+enum class ImageFormat : uint8_t { rgba32f, r32f, r32i, rgba32i };
 enum class ImageShape : uint8_t { image2D, image3D };
 namespace image_flags {
 inline constexpr unsigned FRAME = 1u, READBACK = 2u, TARGET = 4u, OUTPUT = 8u;
@@ -122,6 +123,8 @@ constexpr bool hasTexelView(BufferId id) {
 }
 
 VkFormat vkFormat(ImageFormat f);
+// Bytes per texel of format f.
+VkDeviceSize texelBytes(ImageFormat f);
 VkDescriptorType descriptorType(BufferKind k);
 // Whether the host fills the buffer (mapped upload memory) rather than the passes.
 bool hostWrites(BufferKind k);

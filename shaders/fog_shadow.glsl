@@ -79,11 +79,11 @@ vec3 vdbShadowBlend(int light, ShadowLookup k) {
 // blend where its 8 cells agree, the exact closed form where a shadow edge crosses them.
 // k: shadowLookup of the froxel, computed once for all lights.
 vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
+    if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, k);
     ShadowBlend b = blendShadowCells(light, k);
     if (b.trusted) return b.transmittance * vdb;
-    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
+    return lightFogTransmittance(lightAt(light), p, toLight, distance) * vdb;
 }
 
 // Surfaces (core: surfaceFogTransmittance): the exact closed form everywhere, times the vdb layer's
@@ -91,7 +91,7 @@ vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, flo
 // the blend only added its 8 loads to the exact form's cost (docs/performance.md, "perfgeo").
 // s: shadowLookupAt of p, computed once for all lights (the vdb layer's lookup).
 vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
+    if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
-    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
+    return lightFogTransmittance(lightAt(light), p, toLight, distance) * vdb;
 }

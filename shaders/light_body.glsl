@@ -16,6 +16,7 @@
 // shadow maps are compiled out when the frame has none (SPEC_VDB_SHADOWS, SPEC_SUN_SHADOW_MAP,
 // SPEC_LOCAL_SHADOW_MAPS), where they would return 1. (They were #define variants before.)
 #define BRUME_FROXEL_IMAGES
+#define BRUME_LIGHT_TEXELS  // lights and their clusters through texel views (resources.glsl lightAt)
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
@@ -51,18 +52,18 @@ LightSample lightFroxelSample(LightData l, vec3 p, float nearest) {
 #ifdef BRUME_LIGHT_EXACT
 // fog_shadow.glsl froxelFogTransmittance, with the corners of shadowCorners.
 vec3 exactFogTransmittance(int light, ShadowLookup k, ShadowCorners c, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
+    if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, k);
     ShadowBlend b = blendShadowCorners(light, c, k.weights);
     if (b.trusted) return b.transmittance * vdb;
-    return lightFogTransmittance(lights[light], p, toLight, distance) * vdb;
+    return lightFogTransmittance(lightAt(light), p, toLight, distance) * vdb;
 }
 #else
 // The trusted blend of light `light`'s fog transmittance at k (fog_shadow.glsl
 // froxelFogTransmittance without its exact fallback); trusted = false where that fallback is needed.
 vec3 trustedFogTransmittance(int light, ShadowLookup k, ShadowCorners c, out bool trusted) {
     trusted = true;
-    if (!fogShadowsLight(lights[light], localFogShadowsFlag())) return vec3(1.0f);
+    if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
     ShadowBlend b = blendShadowCorners(light, c, k.weights);
     trusted = b.trusted;
     return b.transmittance * vdbShadowBlend(light, k);
@@ -108,12 +109,13 @@ void main() {
     float sun = lightSunVisibility(p);
     // Only the lights of this froxel's cluster (clusters.h), in the CPU's order.
     int record = clusterRecord(id, frame.froxelDims.xyz);
-    bool all = lightClusters[record] == CLUSTER_ALL_LIGHTS;
-    int count = all ? frame.counts.w : lightClusters[record];
+    bool all = clusterInt(record) == CLUSTER_ALL_LIGHTS;
+    int count = all ? frame.counts.w : clusterInt(record);
     for (int k = 0; k < count; ++k) {
-        int i = all ? k : lightClusters[record + 1 + k];
-        LightSample ls = lightFroxelSample(lights[i], p, nearest);
-        vec3 inScatter = inScatterPerSigmaS(lights[i], ls, viewDir, phase);
+        int i = all ? k : clusterInt(record + 1 + k);
+        LightData l = lightAt(i);
+        LightSample ls = lightFroxelSample(l, p, nearest);
+        vec3 inScatter = inScatterPerSigmaS(l, ls, viewDir, phase);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
 #ifdef BRUME_LIGHT_EXACT

@@ -2,8 +2,8 @@
 // unmapped lights and outside a spot's face.
 float localShadowVisibility(int i, vec3 p) {
     int n = frame.localShadowTexels;
-    if (SPEC_LOCAL_SHADOW_MAPS == 0 || !localShadowMapped(lights[i], n)) return 1.0f;
-    LocalShadowLookup k = localShadowLookup(lights[i], n, p);
+    if (SPEC_LOCAL_SHADOW_MAPS == 0 || !localShadowMapped(lightAt(i), n)) return 1.0f;
+    LocalShadowLookup k = localShadowLookup(lightAt(i), n, p);
     if (!k.inside) return 1.0f;
     return localShadowPcf(k, localShadowDepth[localShadowIndex(k, n, ivec2(0, 0))],
                           localShadowDepth[localShadowIndex(k, n, ivec2(1, 0))],

@@ -9,9 +9,33 @@
 #define BRUME_GLSL_BUFFER(id, binding_, kind, layout_, qualifiers, block, body) \
     layout(layout_, set = 0, binding = binding_) qualifiers block { body };
 BRUME_FRAME_BUFFERS(BRUME_GLSL_BUFFER)
-// The format is the view's (C++), not the shader's: texelFetch returns vec4 whatever it is.
-#define BRUME_GLSL_TEXEL_VIEW(id, binding_, buffer, format) layout(set = 0, binding = binding_) uniform samplerBuffer id;
+// The format is the view's (C++); the shader's sampler follows its numeric type: texelFetch returns a
+// vec4 for the float formats, an ivec4 for the integer ones.
+#define BRUME_GLSL_SAMPLER_rgba32f samplerBuffer
+#define BRUME_GLSL_SAMPLER_r32f samplerBuffer
+#define BRUME_GLSL_SAMPLER_r32i isamplerBuffer
+#define BRUME_GLSL_SAMPLER_rgba32i isamplerBuffer
+#define BRUME_GLSL_TEXEL_VIEW(id, binding_, buffer, format) \
+    layout(set = 0, binding = binding_) uniform BRUME_GLSL_SAMPLER_##format id;
 BRUME_FRAME_TEXEL_VIEWS(BRUME_GLSL_TEXEL_VIEW)
+
+// Light i and the light cluster buffer's int i. Shaders that define BRUME_LIGHT_TEXELS before this
+// file (the light passes) read them through the texel views lightTexels and lightClusterTexels:
+// lavapipe loads a storage buffer lane by lane, a texel buffer's texels as vector gathers
+// (docs/performance.md, "texel2"). The others read the storage buffers.
+#ifdef BRUME_LIGHT_TEXELS
+LightData lightAt(int i) {
+    int t = LIGHT_DATA_TEXELS * i;
+    ivec4 intensityFog = texelFetch(lightTexels, t + 2);
+    return LightData(intBitsToFloat(texelFetch(lightTexels, t)), intBitsToFloat(texelFetch(lightTexels, t + 1)),
+                     intBitsToFloat(intensityFog.xyz), intBitsToFloat(intensityFog.w),
+                     intBitsToFloat(texelFetch(lightTexels, t + 3)), texelFetch(lightTexels, t + 4));
+}
+int clusterInt(int i) { return texelFetch(lightClusterTexels, i).x; }
+#else
+LightData lightAt(int i) { return lights[i]; }
+int clusterInt(int i) { return lightClusters[i]; }
+#endif
 
 #ifdef BRUME_FROXEL_IMAGES
 #define BRUME_GLSL_IMAGE(id, binding_, format, type, flags) \

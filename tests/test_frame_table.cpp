@@ -169,6 +169,8 @@ TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
 // written by a pass before the first pass that reads the view (else the view reads nothing).
 TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
     EXPECT_EQ(memoryOf(TexelViewId::shadowTexels), ResRef(BufferId::shadowTransmittance));
+    EXPECT_EQ(memoryOf(TexelViewId::lightClusterTexels), ResRef(BufferId::lightClusters));
+    EXPECT_EQ(memoryOf(TexelViewId::lightTexels), ResRef(BufferId::lights));
     EXPECT_EQ(memoryOf(BufferId::lights), ResRef(BufferId::lights));
     for (const TexelViewDecl& v : kTexelViews) {
         const ResRef view(v.id);

@@ -160,6 +160,18 @@ TEST(SharedLayout, LightDataStd140AndStd430MatchCpp) {
     EXPECT_EQ(reflected().blockSizes.at("L430"), static_cast<int>(2 * sizeof(shd::LightData)));
 }
 
+// The light passes read lights[] as rgba32i texels (resources.glsl lightAt): LIGHT_DATA_TEXELS per
+// light, each member inside the texel lightAt takes it from, at the component it takes.
+TEST(SharedLayout, LightDataTexelsMatchLightAt) {
+    EXPECT_EQ(sizeof(shd::LightData), 16u * static_cast<size_t>(shd::LIGHT_DATA_TEXELS));
+    EXPECT_EQ(offsetof(shd::LightData, positionRange), 0u);
+    EXPECT_EQ(offsetof(shd::LightData, direction), 16u);
+    EXPECT_EQ(offsetof(shd::LightData, intensity), 32u);
+    EXPECT_EQ(offsetof(shd::LightData, fogScale), 44u);
+    EXPECT_EQ(offsetof(shd::LightData, spot), 48u);
+    EXPECT_EQ(offsetof(shd::LightData, kind), 64u);
+}
+
 TEST(SharedLayout, FroxelCountersStd430MatchCpp) {
     EXPECT_MEMBER("c430.", FroxelCounters, litFroxels);
     EXPECT_MEMBER("c430.", FroxelCounters, skippedFroxels);

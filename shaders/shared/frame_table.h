@@ -56,14 +56,20 @@
 //                       their wakes at the scene time (core/influence.h), read by voxelize
 
 // Uniform texel buffer views of the buffers above, X(id, binding, viewed buffer, texel format): GLSL
-// reads them with texelFetch (a samplerBuffer); they alias the buffer's memory, so the executor
+// reads them with texelFetch (a samplerBuffer, an isamplerBuffer for the r32i and rgba32i formats:
+// the bits as stored, intBitsToFloat gives a float field back); they alias the buffer's memory, so the executor
 // orders their reads after the buffer's writes (a pass lists the view in its reads). Why a view:
 // lavapipe loads a storage buffer lane by lane (8 guarded scalar loads per component), a texel
 // buffer's texelFetch through its sampler's vector gather (docs/performance.md, "blend").
 //   shadowTexels        shadowTransmittance as rgba32f texels (fog_shadow.glsl shadowCell): the light
 //                       passes' and the surfaces' reads of the fog transmittance volume
+//   lightClusterTexels  lightClusters as r32i texels: the light passes' reads of the cluster lists
+//   lightTexels         lights as rgba32i texels, LIGHT_DATA_TEXELS per LightData (resources.glsl
+//                       lightAt): the light passes' reads of the lights
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
-    X(shadowTexels, 26, shadowTransmittance, rgba32f)
+    X(shadowTexels, 26, shadowTransmittance, rgba32f) \
+    X(lightClusterTexels, 27, lightClusters, r32i) \
+    X(lightTexels, 28, lights, rgba32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

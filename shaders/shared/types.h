@@ -75,6 +75,9 @@ struct LightData {
     ivec4 kind;           // x: LIGHT_*; y: casts shadows (0/1); z: point/spot: local shadow map slot + 1,
                           // 0 = none (local_shadow.h)
 };
+// LightData as 16-byte texels (std430 stride = sizeof = 80 bytes): the light passes read lights[]
+// through the rgba32i texel view lightTexels, texel t holding bytes 16t..16t+15 (resources.glsl lightAt).
+BRUME_CONST int LIGHT_DATA_TEXELS = 5;
 
 // The slots of LightData.kind and VolumeData.kind after x (the kind), by name, for C++ and GLSL
 // (compileScene writes them).
