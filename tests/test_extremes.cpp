@@ -91,18 +91,30 @@ DensityTexture smallestTexture() {
     return t;
 }
 
-// Unbounded fog modulated by the smallest texture, near 1e-4, far 1e4: rays cross 1e4 m of fog whose
-// texture changes every 31 um. Height fog with the texture and its detail; depth fog with the texture
-// alone at strength 2.
-std::vector<Scene> texturedUnboundedScenes() {
+// The range's extremes for the camera: near 1e-4, far 1e4.
+Scene nearAndFarScene() {
     Scene s = baseScene();
     s.camera.near = 1e-4f;
     s.camera.far = 1e4f;
+    return s;
+}
+
+// Height fog that every ray crosses out to the far plane.
+Volume unboundedHeightFog() {
     Volume h;
     h.type = VolumeType::Height;
     h.falloff = 0.5f;
     h.medium.scattering = glm::vec3(0.02f);
     h.medium.absorption = glm::vec3(0.005f);
+    return h;
+}
+
+// Unbounded fog modulated by the smallest texture, near 1e-4, far 1e4: rays cross 1e4 m of fog whose
+// texture changes every 31 um. Height fog with the texture and its detail; depth fog with the texture
+// alone at strength 2.
+std::vector<Scene> texturedUnboundedScenes() {
+    Scene s = nearAndFarScene();
+    Volume h = unboundedHeightFog();
     h.density_texture = smallestTexture();
     Volume d;
     d.type = VolumeType::Depth;
@@ -139,15 +151,8 @@ std::vector<Case> extremeCases() {
         withLights(g > 0.0f ? "g = +1" : "g = -1", s);
     }
     {
-        Scene s = baseScene();
-        s.camera.near = 1e-4f;
-        s.camera.far = 1e4f;
-        Volume h;
-        h.type = VolumeType::Height;
-        h.falloff = 0.5f;
-        h.medium.scattering = glm::vec3(0.02f);
-        h.medium.absorption = glm::vec3(0.005f);
-        s.volumes = {h, boxFog({0.0f, 1.0f, 0.0f}, {2.0f, 2.0f, 2.0f}, 0.5f, 0.4f, 0.0f)};
+        Scene s = nearAndFarScene();
+        s.volumes = {unboundedHeightFog(), boxFog({0.0f, 1.0f, 0.0f}, {2.0f, 2.0f, 2.0f}, 0.5f, 0.4f, 0.0f)};
         withLights("near 1e-4, far 1e4", s);
     }
     {
