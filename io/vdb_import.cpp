@@ -1,6 +1,5 @@
 #include "vdb_import.h"
 #include "mesh_import.h"
-#include "one_line.h"
 #include "vdb_inprocess.h"
 #include "vdb_stream.h"
 
@@ -93,7 +92,7 @@ Result<FileGrids> readAll(const std::string& path, const std::function<void(cons
     try {
         out.grids = readGrids(path, progress);
     } catch (const std::exception& e) {
-        return Error{path + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."};
+        return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
     } catch (...) {
         return Error{path + ": not a readable OpenVDB file."};
     }
@@ -243,7 +242,7 @@ Result<FileGrids> readMetadata(const std::string& path) {
             for (const auto& g : *readGrids(path, {})) out.grids->push_back(g->copyGridWithNewTree());
         }
     } catch (const std::exception& e) {
-        return Error{path + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."};
+        return Error{path + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."};
     } catch (...) {
         return Error{path + ": not a readable OpenVDB file."};
     }

@@ -228,7 +228,7 @@ int vdbReaderMain(int argc, char** argv) {
     try {
         result = load ? runLoad(file, argv[3], limit, dir) : mesh ? runMesh(file, argv[3], limit, dir) : runInfo(file, limit);
     } catch (const std::exception& e) {
-        result = {{"ok", false}, {"error", file + ": not a readable OpenVDB file (" + escapeControlCharacters(e.what()) + ")."}};
+        result = {{"ok", false}, {"error", file + ": not a readable OpenVDB file (" + std::string(e.what()) + ")."}};
     }
     return writeResult(dir, result) ? 0 : 3;
 }
@@ -366,6 +366,8 @@ Result<json> runReader(const std::string& file, std::vector<std::string> args, c
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return Error{crashed(file)};
     try {
         json result = json::parse(readAll(out.result()));
+        // OpenVDB's messages can quote bytes of the file (a map type's name): every refusal the reader
+        // sends is escaped here, the one place all of them pass, so it stays one line.
         if (!result.at("ok").get<bool>()) return Error{escapeControlCharacters(result.at("error").get<std::string>())};
         return result;
     } catch (const std::exception&) {

@@ -13,7 +13,6 @@ VdbFileBuf::VdbFileBuf(const std::string& path, std::function<void(float)> progr
     std::error_code ec;
     fileSize_ = std::filesystem::file_size(path, ec);
     if (ec) fileSize_ = 0;
-    size_ = std::max<uint64_t>(1, fileSize_);
 }
 
 VdbFileBuf::int_type VdbFileBuf::underflow() {
@@ -22,7 +21,7 @@ VdbFileBuf::int_type VdbFileBuf::underflow() {
     read_ += n;
     filePos_ += n;
     setg(buffer_, buffer_, buffer_ + n);
-    const int percent = static_cast<int>(std::min<uint64_t>(100, read_ * 100 / size_));
+    const int percent = static_cast<int>(std::min<uint64_t>(100, read_ * 100 / std::max<uint64_t>(1, fileSize_)));
     if (progress_ && percent > percent_) {
         percent_ = percent;
         progress_(static_cast<float>(percent) / 100.0f);

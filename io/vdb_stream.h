@@ -35,7 +35,7 @@ private:
     };
     std::unique_ptr<std::FILE, Close> file_;
     std::function<void(float)> progress_;
-    uint64_t size_ = 1, read_ = 0;
+    uint64_t read_ = 0;
     uint64_t fileSize_ = 0, filePos_ = 0;  // filePos_: the file offset just past the buffer's bytes
     int percent_ = -1;
     char buffer_[1 << 16];
