@@ -56,18 +56,24 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
     return RenderPassOwner(device.vk(), rp);
 }
 
+// fragment == nullptr: the depth pre-pass's pipeline (no fragment shader, no colour writes).
 Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass,
                                      const SpecKey& key, const char* fragment) {
+    const bool depthOnly = fragment == nullptr;
     Result<ShaderModuleOwner> vert = createShaderModule(device, "geometry.vert");
     if (!vert) return vert.error();
-    Result<ShaderModuleOwner> frag = createShaderModule(device, fragment);
-    if (!frag) return frag.error();
+    ShaderModuleOwner frag;
+    if (!depthOnly) {
+        Result<ShaderModuleOwner> f = createShaderModule(device, fragment);
+        if (!f) return f.error();
+        frag = std::move(f.value());
+    }
     const Specialization spec(key);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
                  vert.value().get(), "main", &spec.info};
     stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-                 frag.value().get(), "main", &spec.info};
+                 frag.get(), "main", &spec.info};
 
     const VkVertexInputBindingDescription binding{0, sizeof(GeometryVertex), VK_VERTEX_INPUT_RATE_VERTEX};
     std::array<VkVertexInputAttributeDescription, 4> attrs{};
@@ -90,10 +96,10 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth = vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
     depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    depth.depthWriteEnable = depthOnly ? VK_TRUE : VK_FALSE;
+    depth.depthCompareOp = depthOnly ? VK_COMPARE_OP_LESS : VK_COMPARE_OP_EQUAL;
     std::array<VkPipelineColorBlendAttachmentState, 2> blendAtt{};
-    for (auto& b : blendAtt) b.colorWriteMask = 0xF;
+    for (auto& b : blendAtt) b.colorWriteMask = depthOnly ? 0 : 0xF;
     VkPipelineColorBlendStateCreateInfo blend = vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
     blend.attachmentCount = static_cast<uint32_t>(blendAtt.size());
     blend.pAttachments = blendAtt.data();
@@ -103,7 +109,7 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     dynamic.pDynamicStates = dynamicStates.data();
 
     VkGraphicsPipelineCreateInfo info = vkStruct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
-    info.stageCount = static_cast<uint32_t>(stages.size());
+    info.stageCount = depthOnly ? 1 : static_cast<uint32_t>(stages.size());
     info.pStages = stages.data();
     info.pVertexInputState = &vertexInput;
     info.pInputAssemblyState = &assembly;
@@ -129,6 +135,10 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     Result<RenderPassOwner> rp = createRenderPass(device);
     if (!rp) return rp.error();
     pass.renderPass_ = std::move(rp.value());
+    // The vertex shader reads no specialization constant: one depth pipeline serves every key.
+    Result<PipelineOwner> depthOnly = createPipeline(device, layout, pass.renderPass_.get(), SpecKey{}, nullptr);
+    if (!depthOnly) return depthOnly.error();
+    pass.depthPipeline_ = std::move(depthOnly.value());
     BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}, false));
     return pass;
 }
@@ -196,12 +206,16 @@ void GeometryPass::record(const PassContext& ctx) const {
         const VkRect2D scissor{{0, 0}, extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, b.pipelineLayout.get(), 0, 1, &b.set, 0,
                                 nullptr);
         const VkDeviceSize offset = 0;
         const VkBuffer vb = r.vertices.buffer.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        // Depth first, then shading where the depth is equal: each visible pixel is shaded once,
+        // whatever the draw order (the ground under the wall was shaded, then painted over).
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_.get());
+        vkCmdDraw(cmd, vertexCount, 1, 0, 0);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
         vkCmdDraw(cmd, vertexCount, 1, 0, 0);
     }
     vkCmdEndRenderPass(cmd);

@@ -66,6 +66,7 @@ private:
     RenderPassOwner renderPass_;
     std::map<std::pair<SpecKey, bool>, PipelineOwner> pipelines_;  // by specialization key and shapes variant
     VkPipeline pipeline_ = VK_NULL_HANDLE;                          // the one usePipeline chose
+    PipelineOwner depthPipeline_;  // the depth pre-pass: vertex shader only
     GpuImage depthBuffer_;  // d32, depth test only
     FramebufferOwner framebuffer_;
 };

@@ -13,6 +13,8 @@ layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec3 albedo;
 layout(location = 3) out vec3 emission;
 layout(location = 4) out float viewDepth;
+// The depth pre-pass and the shading pass must rasterize the same depths (EQUAL test).
+invariant gl_Position;
 
 void main() {
     worldPos = inPosition.xyz;
