@@ -42,8 +42,8 @@ Accumulated distantTableAt(ivec2 corners, int x, int y, int j) {
     Accumulated a;
     if (j <= 0) return emptyAccumulated();
     int index = distantTableIndex(corners, ivec2(x, y), j);
-    a.scattering = distantTable[index].rgb;
-    a.transmittance = distantTable[index + 1].rgb;
+    a.scattering = texelFetch(distantTexels, index).rgb;
+    a.transmittance = texelFetch(distantTexels, index + 1).rgb;
     return a;
 }
 

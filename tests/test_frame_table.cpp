@@ -171,6 +171,7 @@ TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
     EXPECT_EQ(memoryOf(TexelViewId::shadowTexels), ResRef(BufferId::shadowTransmittance));
     EXPECT_EQ(memoryOf(TexelViewId::lightClusterTexels), ResRef(BufferId::lightClusters));
     EXPECT_EQ(memoryOf(TexelViewId::lightTexels), ResRef(BufferId::lights));
+    EXPECT_EQ(memoryOf(TexelViewId::distantTexels), ResRef(BufferId::distantTable));
     EXPECT_EQ(memoryOf(BufferId::lights), ResRef(BufferId::lights));
     for (const TexelViewDecl& v : kTexelViews) {
         const ResRef view(v.id);

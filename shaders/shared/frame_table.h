@@ -66,10 +66,12 @@
 //   lightClusterTexels  lightClusters as r32i texels: the light passes' reads of the cluster lists
 //   lightTexels         lights as rgba32i texels, LIGHT_DATA_TEXELS per LightData (resources.glsl
 //                       lightAt): the light passes' reads of the lights
+//   distantTexels       distantTable as rgba32f texels: the composite's 16 reads per pixel
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
     X(shadowTexels, 26, shadowTransmittance, rgba32f) \
     X(lightClusterTexels, 27, lightClusters, r32i) \
-    X(lightTexels, 28, lights, rgba32i)
+    X(lightTexels, 28, lights, rgba32i) \
+    X(distantTexels, 29, distantTable, rgba32f)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
