@@ -390,3 +390,35 @@ TEST(FogShadowClosedForm, BoxMatchesADenseIntegralOnDegenerateRays) {
     }
     std::printf("worst |closed form - dense integral| of the box: %.2e m\n", worst);
 }
+
+// The exponential height fog's density length (shared/distant.h heightExponentialLength) where the
+// ray's pieces degenerate: starting exactly at base, level rays above and below base, rays that
+// never reach base, and half-lines to infinity (a sun), against the integral in closed form in
+// double: below base the density is 1, above it exp(-f (y - base)). Tolerance 1e-5 relative.
+TEST(FogShadowClosedForm, HeightExponentialLengthOnDegenerateRays) {
+    const double base = 2.0, f = 0.7;
+    // Integral over s in [0, len] of the density along y0 + dy s, split at the crossing.
+    auto exact = [&](double y0, double dy, double len) {
+        auto above = [&](double ya, double d, double l) {  // from height ya >= base, rising at d >= 0
+            if (d == 0.0) return std::exp(-f * (ya - base)) * l;
+            return std::exp(-f * (ya - base)) * -std::expm1(-f * d * l) / (f * d);
+        };
+        if (dy == 0.0) return y0 <= base ? len : above(y0, 0.0, len);
+        const double c = std::clamp((base - y0) / dy, 0.0, len);
+        if (y0 > base) return dy < 0.0 ? above(y0 + dy * c, -dy, c) + (len - c) : above(y0, dy, len);
+        return dy > 0.0 ? c + above(base, dy, len - c) : len;
+    };
+    struct Case {
+        float y0, dy, len;
+    };
+    const float huge = shd::BRUME_HUGE;
+    for (Case k : {Case{2.0f, 0.5f, 10.0f}, Case{2.0f, -0.5f, 10.0f}, Case{2.0f, 0.0f, 10.0f}, Case{3.0f, 0.0f, 10.0f},
+                   Case{1.0f, 0.0f, 10.0f}, Case{1.0f, -0.3f, 10.0f}, Case{3.0f, 0.3f, 10.0f}, Case{3.0f, -0.3f, 10.0f},
+                   Case{3.0f, -0.3f, 2.0f}, Case{1.0f, 0.3f, 2.0f}, Case{1.0f, 0.3f, 5.0f}, Case{3.0f, -1e-6f, 10.0f},
+                   Case{1.0f, 1e-6f, 10.0f}, Case{1.0f, 0.3f, huge}, Case{3.0f, 0.3f, huge}, Case{2.0f, 0.8f, huge},
+                   Case{2.5f, 0.0f, huge}}) {
+        const double want = exact(k.y0, k.dy, k.len);
+        const float got = shd::heightExponentialLength(k.y0, k.dy, k.len, static_cast<float>(base), static_cast<float>(f));
+        EXPECT_NEAR(got, want, 1e-5 * want) << "y0 " << k.y0 << " dy " << k.dy << " len " << k.len;
+    }
+}
