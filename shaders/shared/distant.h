@@ -25,22 +25,21 @@ BRUME_FUNC float heightCrossing(float y0, float dy, float len, float level) {
     return clamp((level - y0) / dy, 0.0f, len);
 }
 
-// Integral of exp(-f * max(y(s) - base, 0)) over s in [a, b]; the piece lies on one side of base.
-BRUME_FUNC float heightExponentialPiece(float y0, float dy, float a, float b, float base, float f) {
-    float len = b - a;
-    if (len <= 0.0f) return 0.0f;
-    float yA = y0 + dy * a;
-    float yB = y0 + dy * b;
-    if ((yA + yB) * 0.5f <= base) return len;
-    // Integrate upward from the piece's lowest point: the exponent of phi is then non-negative.
-    float yLow = max(min(yA, yB), base);
-    return exp(-f * (yLow - base)) * len * slabPhi(f * abs(dy) * len);
-}
-
-// Integral of exp(-f * max(y(s) - base, 0)) over s in [0, len], y(s) = y0 + dy * s.
+// Integral of exp(-f * max(y(s) - base, 0)) over s in [0, len], y(s) = y0 + dy * s. The ray crosses
+// base at most once (at c): of [0, c] and [c, len] one lies below base (density 1: its length) and
+// the other above it. Telling them apart by the start's side and the slope, instead of integrating
+// both pieces, needs one exp and one slabPhi (lavapipe evaluates both branches of every piece).
 BRUME_FUNC float heightExponentialLength(float y0, float dy, float len, float base, float f) {
     float c = heightCrossing(y0, dy, len, base);
-    return heightExponentialPiece(y0, dy, 0.0f, c, base, f) + heightExponentialPiece(y0, dy, c, len, base, f);
+    bool startAbove = y0 > base;
+    // [a, b]: the piece above base (empty, a = b = c = 0, for a ray that starts below and never rises).
+    float a = startAbove ? 0.0f : c;
+    float b = startAbove ? (dy < 0.0f ? c : len) : (dy > 0.0f ? len : c);
+    float below = startAbove ? len - b : (dy > 0.0f ? c : len);
+    float above = b - a;
+    // Integrate upward from the piece's lowest point: the exponent of phi is then non-negative.
+    float yLow = max(min(y0 + dy * a, y0 + dy * b), base);
+    return below + exp(-f * (yLow - base)) * above * slabPhi(f * abs(dy) * above);
 }
 
 // Integral of clamp(1 - max(y(s) - base, 0) / h, 0, 1) over s in [0, len]: the density is linear in s

@@ -24,47 +24,57 @@
 BRUME_NAMESPACE_BEGIN
 
 // Parameter interval [x, y] of o + s * d inside the cube [-h, h]^3; empty when x > y.
+// Branch-free (lavapipe runs both sides of a branch): an axis the ray parallels (|d| < 1e-20, past
+// which the slab's own interval would be longer than 1e19 and another axis bounds the chord) admits
+// every s when |o| <= h (a ray along a face is inside) and none otherwise; one reciprocal per axis.
 BRUME_FUNC vec2 cubeInterval(vec3 o, vec3 d, float h) {
     vec2 r = vec2(-BRUME_HUGE, BRUME_HUGE);
     for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) {
-            if (abs(o[a]) > h) return vec2(1.0f, 0.0f);
-            continue;
-        }
-        float ta = (-h - o[a]) / d[a];
-        float tb = (h - o[a]) / d[a];
-        r.x = max(r.x, min(ta, tb));
-        r.y = min(r.y, max(ta, tb));
+        bool parallel = abs(d[a]) < 1.0e-20f;
+        float inv = 1.0f / (parallel ? 1.0f : d[a]);
+        float ta = (-h - o[a]) * inv;
+        float tb = (h - o[a]) * inv;
+        bool outside = abs(o[a]) > h;
+        r.x = max(r.x, parallel ? (outside ? BRUME_HUGE : -BRUME_HUGE) : min(ta, tb));
+        r.y = min(r.y, parallel ? (outside ? -BRUME_HUGE : BRUME_HUGE) : max(ta, tb));
     }
     return r;
 }
 
-// Integral of smoothstep(e0, 1, u) du from below e0 (where it is 0) up to u.
-BRUME_FUNC float smoothstepIntegralToOne(float e0, float u) {
-    if (u <= e0) return 0.0f;
-    float w = 1.0f - e0;
-    if (u >= 1.0f) return 0.5f * w + (u - 1.0f);
-    float x = (u - e0) / w;
-    return w * x * x * x * (1.0f - 0.5f * x);
+// The faded box's density 1 - smoothstep(e0, 1, u), e0 = 1 - fade, seen at one end of a piece:
+// u = 2 max|q_a| (continuous along the ray: at a cut the two |q_a| are equal), u clamped into the
+// fade [e0, 1], the fade's coordinate x = (u - e0) / fade in [0, 1], and u clamped below at 1.
+struct FadeEnd {
+    float u;
+    float fadeU;
+    float x;
+    float topU;
+};
+
+BRUME_FUNC FadeEnd fadeEnd(vec3 lo, vec3 ld, float s, float e0, float invFade) {
+    vec3 q = abs(lo + ld * s);
+    FadeEnd f;
+    f.u = 2.0f * max(q.x, max(q.y, q.z));
+    f.fadeU = clamp(f.u, e0, 1.0f);
+    f.x = min((f.fadeU - e0) * invFade, 1.0f);
+    f.topU = max(f.u, 1.0f);
+    return f;
 }
 
-// Integral of the faded density 1 - smoothstep(1 - fade, 1, u) over one piece [s0, s1] on which
-// u = 2 |q_a| is linear (a the dominant local axis).
-BRUME_FUNC float fadedPieceLength(vec3 lo, vec3 ld, float s0, float s1, float fade) {
-    float len = s1 - s0;
-    if (len <= 0.0f) return 0.0f;
-    float mid = 0.5f * (s0 + s1);
-    vec3 qm = abs(lo + ld * mid);
-    int a = qm.x >= qm.y && qm.x >= qm.z ? 0 : (qm.y >= qm.z ? 1 : 2);
-    float sgn = lo[a] + ld[a] * mid >= 0.0f ? 2.0f : -2.0f;
-    float u0 = sgn * (lo[a] + ld[a] * s0);
-    float u1 = sgn * (lo[a] + ld[a] * s1);
-    float e0 = 1.0f - fade;
-    // A nearly face-parallel piece: the midpoint rule (error ~ len du^2 / 4) instead of a
-    // difference of antiderivatives that would cancel in float.
-    if (abs(u1 - u0) < 1.0e-3f) return len * (1.0f - smoothstep(e0, 1.0f, 0.5f * (u0 + u1)));
-    float faded = (smoothstepIntegralToOne(e0, u1) - smoothstepIntegralToOne(e0, u0)) / (u1 - u0);
-    return len * (1.0f - faded);
+// Integral of the faded density over a piece of length len between ends a and b, on which u is
+// linear (one axis dominates). The mean of smoothstep(e0, 1, u) over [u_a, u_b] splits where u
+// crosses e0 and 1: 0 below, 1 past 1 (the part topU_b - topU_a of u_b - u_a), and across the fade
+// (the part fadeU_b - fadeU_a) the mean of 3x^2 - 2x^3 over [x_a, x_b], the divided difference of
+// its antiderivative x^3 - x^4 / 2 written without cancellation:
+// x_a^2 + x_a x_b + x_b^2 - (x_a + x_b)(x_a^2 + x_b^2) / 2. So a nearly face-parallel piece (u_b
+// close to u_a) needs no fallback; at u_b = u_a that mean is the smoothstep at u_a, the limit.
+BRUME_FUNC float fadedPieceLength(FadeEnd a, FadeEnd b, float len) {
+    float du = b.u - a.u;
+    float squares = a.x * a.x + b.x * b.x;
+    float fadeMean = squares + a.x * b.x - 0.5f * (a.x + b.x) * squares;
+    float inv = 1.0f / (du != 0.0f ? du : 1.0f);
+    float mean = du != 0.0f ? ((b.fadeU - a.fadeU) * fadeMean + (b.topU - a.topU)) * inv : fadeMean;
+    return len * (1.0f - mean);
 }
 
 // Orders a pair of cuts (a compare-exchange of the sorting network below).
@@ -75,7 +85,8 @@ BRUME_FUNC vec2 sortedPair(float a, float b) { return vec2(min(a, b), max(a, b))
 // takes): the six cuts where |q_a| = |q_b| for an axis pair are clamped into the chord (a cut that
 // misses it becomes a piece of length 0, which adds exactly 0), ordered by a fixed 12-exchange
 // sorting network, and the seven pieces between chord ends and cuts are summed in order. The same
-// pieces as a sorted list of only the cuts inside the chord, so the same sum.
+// pieces as a sorted list of only the cuts inside the chord, so the same sum. u and its clamps are
+// evaluated once at each of the 8 piece ends (fadeEnd), shared by the two pieces that meet there.
 BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
     vec3 lo = vec3(v.localFromWorld * vec4(o, 1.0f));
     vec3 ld = vec3(v.localFromWorld * vec4(d, 0.0f));
@@ -112,9 +123,18 @@ BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
     t = sortedPair(c[2], c[4]); c[2] = t.x; c[4] = t.y;
     t = sortedPair(c[1], c[3]); c[1] = t.x; c[3] = t.y;
     t = sortedPair(c[2], c[3]); c[2] = t.x; c[3] = t.y;
-    float total = fadedPieceLength(lo, ld, chord.x, c[0], fade);
-    for (int i = 0; i < 5; ++i) total += fadedPieceLength(lo, ld, c[i], c[i + 1], fade);
-    total += fadedPieceLength(lo, ld, c[5], chord.y, fade);
+    float e0 = 1.0f - fade;
+    float invFade = 1.0f / fade;
+    FadeEnd prev = fadeEnd(lo, ld, chord.x, e0, invFade);
+    FadeEnd next = fadeEnd(lo, ld, c[0], e0, invFade);
+    float total = fadedPieceLength(prev, next, c[0] - chord.x);
+    for (int i = 0; i < 5; ++i) {
+        prev = next;
+        next = fadeEnd(lo, ld, c[i + 1], e0, invFade);
+        total += fadedPieceLength(prev, next, c[i + 1] - c[i]);
+    }
+    FadeEnd last = fadeEnd(lo, ld, chord.y, e0, invFade);
+    total += fadedPieceLength(next, last, chord.y - c[5]);
     return total;
 }
 
