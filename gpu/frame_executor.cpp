@@ -518,7 +518,9 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         ctx.ambient = ambient;
         ctx.cameraFar = cameraFar;
         ctx.vertexCount = vertexCount;
-        if (p.dispatch != Dispatch::Raster) {
+        // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
+        const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest);
+        if (p.dispatch != Dispatch::Raster && dispatches) {
             const SpecKey* key = !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
             Result<const ComputePass*> pipeline =
                 pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), key);

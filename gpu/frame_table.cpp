@@ -33,7 +33,7 @@ const std::array<PassDecl, 11> kPasses{{
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
-     {B::frame, B::volumes, B::vdbGrids, B::influence},
+     {B::frame, T::volumeTexels, B::vdbGrids, B::influence},
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
@@ -48,15 +48,18 @@ const std::array<PassDecl, 11> kPasses{{
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
     // (core/media_region.h), then copied back over sourceImage and mediaExtinction for the integrate
-    // pass; at rest (_rest) each froxel reads only itself and writes in place.
-    {"temporal", "temporal", Variant::Temporal, Dispatch::RegionFroxels, When::Always, Record::TemporalCopy,
+    // pass. At rest it only clears stale history: integrate_rest resolves each froxel itself.
+    {"temporal", "temporal", Variant::None, Dispatch::RegionFroxels, When::Always, Record::TemporalCopy,
      {B::frame, B::previousFrame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource),
       historyIn(H::historyExtinction)},
      {historyOut(H::historySource), historyOut(H::historyExtinction), I::sourceImage, I::mediaExtinction}},
     // Front to back along each froxel column (closed-form slabs), over the temporal region's columns.
-    {"integrate", "integrate", Variant::None, Dispatch::RegionColumns, When::Always, Record::Integrate,
-     {B::frame, I::sourceImage, I::mediaExtinction},
-     {I::integratedScattering, I::integratedTransmittance}},
+    // At rest (_rest) it first resolves each froxel with its own history, writing the history's output
+    // and sourceImage and mediaExtinction as the temporal pass would have.
+    {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
+     {B::frame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource), historyIn(H::historyExtinction)},
+     {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction),
+      I::sourceImage, I::mediaExtinction}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
     // the composite interpolates it.

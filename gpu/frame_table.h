@@ -199,7 +199,8 @@ enum class Variant : uint8_t {
     Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
     ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
     Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
-    Temporal,      // _rest when the view rests or there is no history (shared/temporal.h temporalAtRest)
+    Temporal,      // _rest when the view rests or there is no history (shared/temporal.h temporalAtRest):
+                   // integrate_rest resolves the history, and the temporal pass dispatches nothing
 };
 
 // What selects a variant; one per frame.

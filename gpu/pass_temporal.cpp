@@ -2,7 +2,7 @@
 // frame_table.cpp) and integrate pass, both over the temporal region (core/media_region.h
 // temporalFroxelRegion); what a pass over the whole grid would write outside it is written by clears.
 // In motion the resolved history *_OUT is copied over sourceImage and mediaExtinction for the
-// integrate pass; at rest (temporal_rest) the dispatch writes them itself.
+// integrate pass; at rest the temporal pass only clears, and integrate_rest resolves and writes them.
 #include <array>
 #include <initializer_list>
 
@@ -50,9 +50,12 @@ void recordTemporal(const PassContext& ctx) {
     // The side written now last held an older frame's history: outside this frame's region it must
     // read 0, as a pass over the whole grid would have written there.
     if (r.clearHistoryOut) clearImages(cmd, {{outS, VkClearColorValue{}}, {outE, VkClearColorValue{}}});
+    // At rest the integrate pass (integrate_rest) resolves each froxel with its own history and writes
+    // the history's output, sourceImage and mediaExtinction itself.
+    if (ctx.variant && ctx.variant->temporalRest) return;
     pushRegion(ctx, r.temporalRegion);
     dispatchPass(ctx);
-    if ((ctx.variant && ctx.variant->temporalRest) || r.temporalRegion.empty()) return;
+    if (r.temporalRegion.empty()) return;
     const VkImage source = r[ImageId::sourceImage].image.get(), extinction = r[ImageId::mediaExtinction].image.get();
     constexpr VkImageLayout G = VK_IMAGE_LAYOUT_GENERAL, SRC = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                             DST = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;

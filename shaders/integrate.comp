@@ -1,5 +1,11 @@
 // Pass 3: front to back along each froxel column; entry s holds camera -> far boundary of slice s
 // (core: integrateColumn). Slab lengths are measured along the column-centre ray.
+// Built with BRUME_TEMPORAL_REST (integrate_rest.comp) for frames whose view rests or that have no
+// history: the temporal pass then dispatches nothing, and this pass resolves each froxel with its own
+// history first (shared/temporal.h resolveTemporalAtRest, as the temporal pass in motion would not:
+// it reads neighbours), writes the result to the history's *_OUT side and over sourceImage and
+// mediaExtinction (their later readers: glow, debug view, readback), and integrates it. One pass over
+// the froxels instead of two (docs/performance.md, "voxel").
 // Dispatched over the columns of the temporal region only (region.lo.xy + invocation; core/
 // media_region.h temporalFroxelRegion): S and sigma_t are 0 outside it, so the frame clears the
 // integrated volumes to scattering 0 and transmittance 1 first (in front of the region and in the
@@ -17,10 +23,29 @@ void main() {
     if (any(greaterThanEqual(column, region.hi.xy))) return;
     vec2 pixel = (vec2(column) + vec2(0.5f)) * float(frame.froxelDims.w);
     Accumulated acc = emptyAccumulated();
+    // sliceRayLength(s, pixel, frame) with each slice boundary's depth evaluated once (a pow on
+    // lavapipe): slice s's far depth is slice s + 1's near depth, the same expression.
+    float n = float(frame.froxelDims.z);
+    float rayScale = length(viewRayFromPixel(pixel, frame));
+    float zNear = region.lo.z == 0 ? 0.0f : viewDepthFromSliceT(float(region.lo.z) / n, frame.froxelRange.x,
+                                                                 frame.froxelRange.y, frame.froxelRange.z);
     for (int s = region.lo.z; s < region.hi.z; ++s) {
         ivec3 id = ivec3(column, s);
-        float d = sliceRayLength(s, pixel, frame);
+        float zFar = viewDepthFromSliceT(float(s + 1) / n, frame.froxelRange.x, frame.froxelRange.y, frame.froxelRange.z);
+        float d = (zFar - zNear) * rayScale;
+        zNear = zFar;
+#ifdef BRUME_TEMPORAL_REST
+        vec4 source = resolveTemporalAtRest(imageLoad(sourceImage, id), imageLoad(historySourceIn, id), frame.temporal.x);
+        vec4 extinction =
+            resolveTemporalAtRest(imageLoad(mediaExtinction, id), imageLoad(historyExtinctionIn, id), frame.temporal.x);
+        imageStore(historySourceOut, id, source);
+        imageStore(historyExtinctionOut, id, extinction);
+        imageStore(sourceImage, id, source);
+        imageStore(mediaExtinction, id, extinction);
+        acc = accumulateSlab(acc, source.rgb, extinction.rgb, d);
+#else
         acc = accumulateSlab(acc, imageLoad(sourceImage, id).rgb, imageLoad(mediaExtinction, id).rgb, d);
+#endif
         imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
         imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
     }

@@ -37,6 +37,23 @@ LightData lightAt(int i) { return lights[i]; }
 int clusterInt(int i) { return lightClusters[i]; }
 #endif
 
+// Volume i. Shaders that define BRUME_VOLUME_TEXELS before this file (voxelize) read it through the
+// texel view volumeTexels (the same reason; docs/performance.md, "voxel"), the others the storage buffer.
+#ifdef BRUME_VOLUME_TEXELS
+vec4 volumeTexelF(int t) { return intBitsToFloat(texelFetch(volumeTexels, t)); }
+VolumeData volumeAt(int i) {
+    int t = BRUME_VOLUME_DATA_TEXELS * i;
+    return VolumeData(mat4(volumeTexelF(t), volumeTexelF(t + 1), volumeTexelF(t + 2), volumeTexelF(t + 3)),
+                      volumeTexelF(t + 4), volumeTexelF(t + 5), volumeTexelF(t + 6), volumeTexelF(t + 7),
+                      texelFetch(volumeTexels, t + 8), volumeTexelF(t + 9), volumeTexelF(t + 10),
+                      volumeTexelF(t + 11), volumeTexelF(t + 12), texelFetch(volumeTexels, t + 13),
+                      texelFetch(volumeTexels, t + 14), volumeTexelF(t + 15), volumeTexelF(t + 16),
+                      texelFetch(volumeTexels, t + 17), texelFetch(volumeTexels, t + 18));
+}
+#else
+VolumeData volumeAt(int i) { return volumes[i]; }
+#endif
+
 #ifdef BRUME_FROXEL_IMAGES
 #define BRUME_GLSL_IMAGE(id, binding_, format, type, flags) \
     layout(set = 0, binding = binding_, format) uniform type id;

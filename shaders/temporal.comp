@@ -5,8 +5,8 @@
 // In motion the history is reprojected, clamped to the current neighbourhood and checked for NaN/Inf;
 // the result goes to the history pair's *_OUT images, then is copied over sourceImage and
 // mediaExtinction for the integrate pass (this pass reads their neighbours, so it cannot write them).
-// Built with BRUME_TEMPORAL_REST (temporal_rest.comp) for frames whose view rests or that have no
-// history: each froxel reads only itself and its own history, and writes the result in place too.
+// Frames whose view rests or that have no history dispatch nothing here: integrate_rest.comp resolves
+// each froxel with its own history as it integrates (integrate.comp).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
@@ -14,22 +14,6 @@
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
-
-#ifdef BRUME_TEMPORAL_REST
-
-void main() {
-    ivec3 id = region.lo.xyz + ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(id, region.hi.xyz))) return;
-    float weight = frame.temporal.x;
-    vec4 s = resolveTemporalAtRest(imageLoad(sourceImage, id), imageLoad(historySourceIn, id), weight);
-    vec4 e = resolveTemporalAtRest(imageLoad(mediaExtinction, id), imageLoad(historyExtinctionIn, id), weight);
-    imageStore(historySourceOut, id, s);
-    imageStore(historyExtinctionOut, id, e);
-    imageStore(sourceImage, id, s);
-    imageStore(mediaExtinction, id, e);
-}
-
-#else
 
 const ivec3 kNeighbours[7] = ivec3[7](ivec3(0, 0, 0), ivec3(-1, 0, 0), ivec3(1, 0, 0), ivec3(0, -1, 0),
                                       ivec3(0, 1, 0), ivec3(0, 0, -1), ivec3(0, 0, 1));
@@ -70,5 +54,3 @@ void main() {
     imageStore(historyExtinctionOut, id,
                resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, true));
 }
-
-#endif

@@ -2,5 +2,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
+#define BRUME_VOLUME_TEXELS
 #include "resources.glsl"
 #include "voxelize_body.glsl"

@@ -8,20 +8,23 @@
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
-// Volume i (of kind k: a constant in pipelines specialized with the scene's volume list) at p.
+// Volume i (of kind k: a constant in pipelines specialized with the scene's volume list) at p. The
+// volumes come through the texel view volumeTexels (resources.glsl volumeAt: a vector gather on
+// lavapipe, where volumes[i] loads lane by lane).
 void addVolume(inout MediaSample m, int i, int k, vec3 p) {
-    if (!insideBounds(volumes[i], p)) return;
+    VolumeData v = volumeAt(i);
+    if (!insideBounds(v, p)) return;
 #ifdef BRUME_VOXELIZE_VDB
     float density = BRUME_VOLUME_KIND_USED(VOLUME_VDB) && k == VOLUME_VDB
-                        ? vdbDensity(volumes[i], p)
-                        : analyticDensityOfKind(k, volumes[i], p, frame.cameraPosition.xyz);
+                        ? vdbDensity(v, p)
+                        : analyticDensityOfKind(k, v, p, frame.cameraPosition.xyz);
 #else
-    float density = analyticDensityOfKind(k, volumes[i], p, frame.cameraPosition.xyz);
+    float density = analyticDensityOfKind(k, v, p, frame.cameraPosition.xyz);
 #endif
 #ifdef BRUME_VOXELIZE_TEXTURE
-    if (density > 0.0f) density *= densityTextureFactor(volumes[i], p);
+    if (density > 0.0f) density *= densityTextureFactor(v, p);
 #endif
-    m = addMedium(m, volumes[i], density);
+    m = addMedium(m, v, density);
 }
 
 MediaSample mediaAt(vec3 p) {
@@ -37,7 +40,7 @@ MediaSample mediaAt(vec3 p) {
         BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)
 #undef BRUME_LISTED_VOLUME
     } else {
-        for (int i = 0; i < frame.counts.z; ++i) addVolume(m, i, volumes[i].kind.x, p);
+        for (int i = 0; i < frame.counts.z; ++i) addVolume(m, i, volumeAt(i).kind.x, p);
     }
     return m;
 }

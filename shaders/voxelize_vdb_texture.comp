@@ -2,6 +2,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
+#define BRUME_VOLUME_TEXELS
 #define BRUME_VOXELIZE_VDB
 #define BRUME_VOXELIZE_TEXTURE
 #include "resources.glsl"

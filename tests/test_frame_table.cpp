@@ -137,6 +137,8 @@ TEST(FrameTable, EveryShaderUsesTheTablesBindings) {
 
 // A pass that touched a resource its table entry does not list would get no barrier for it.
 TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
+    // integrate_rest.comp (-DBRUME_TEMPORAL_REST) is reflected as integrate.comp: its table entry lists the
+    // history images the define adds.
     const VariantKey variants[] = {{}, {true, true, VdbEncoding::Float}, {true, false, VdbEncoding::Fp16}};
     for (const PassDecl& p : kPasses) {
         std::set<std::string> sources;
@@ -172,6 +174,7 @@ TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
     EXPECT_EQ(memoryOf(TexelViewId::lightClusterTexels), ResRef(BufferId::lightClusters));
     EXPECT_EQ(memoryOf(TexelViewId::lightTexels), ResRef(BufferId::lights));
     EXPECT_EQ(memoryOf(TexelViewId::distantTexels), ResRef(BufferId::distantTable));
+    EXPECT_EQ(memoryOf(TexelViewId::volumeTexels), ResRef(BufferId::volumes));
     EXPECT_EQ(memoryOf(BufferId::lights), ResRef(BufferId::lights));
     for (const TexelViewDecl& v : kTexelViews) {
         const ResRef view(v.id);
@@ -211,6 +214,11 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     vdbShaped.encoding = VdbEncoding::Fp16;
     EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, vdbShaped), "shadow_volume_vdb_fp16_shapes.comp");
     EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, shaped), "voxelize.comp");
+    // At rest the integrate pass resolves the history (integrate_rest.comp); the temporal pass has no variant.
+    VariantKey rest;
+    rest.temporalRest = true;
+    EXPECT_EQ(variantShaderName("integrate", Variant::Temporal, rest), "integrate_rest.comp");
+    EXPECT_EQ(variantShaderName("integrate", Variant::Temporal, {}), "integrate.comp");
 }
 
 }  // namespace

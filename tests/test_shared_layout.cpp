@@ -11,6 +11,7 @@
 #include "glslang_support.h"
 
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/frame_table.h"
 #include "shaders/shared/brume.h"
 
 using namespace brume;
@@ -170,6 +171,29 @@ TEST(SharedLayout, LightDataTexelsMatchLightAt) {
     EXPECT_EQ(offsetof(shd::LightData, fogScale), 44u);
     EXPECT_EQ(offsetof(shd::LightData, spot), 48u);
     EXPECT_EQ(offsetof(shd::LightData, kind), 64u);
+}
+
+// The voxelize pass reads volumes[] as rgba32i texels (resources.glsl volumeAt): BRUME_VOLUME_DATA_TEXELS per
+// volume, member m in texel offsetof(m) / 16 (a mat4 in the 4 texels from its own), in the order volumeAt
+// builds the struct.
+TEST(SharedLayout, VolumeDataTexelsMatchVolumeAt) {
+    EXPECT_EQ(sizeof(shd::VolumeData), 16u * static_cast<size_t>(BRUME_VOLUME_DATA_TEXELS));
+    EXPECT_EQ(offsetof(shd::VolumeData, localFromWorld), 0u);
+    EXPECT_EQ(offsetof(shd::VolumeData, sigmaS_g), 16u * 4);
+    EXPECT_EQ(offsetof(shd::VolumeData, sigmaA), 16u * 5);
+    EXPECT_EQ(offsetof(shd::VolumeData, emission), 16u * 6);
+    EXPECT_EQ(offsetof(shd::VolumeData, params), 16u * 7);
+    EXPECT_EQ(offsetof(shd::VolumeData, kind), 16u * 8);
+    EXPECT_EQ(offsetof(shd::VolumeData, worldMin), 16u * 9);
+    EXPECT_EQ(offsetof(shd::VolumeData, worldMax), 16u * 10);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureParams), 16u * 11);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureScroll), 16u * 12);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureMin), 16u * 13);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureSize), 16u * 14);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailParams), 16u * 15);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailScroll), 16u * 16);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailMin), 16u * 17);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailSize), 16u * 18);
 }
 
 TEST(SharedLayout, FroxelCountersStd430MatchCpp) {

@@ -67,11 +67,17 @@
 //   lightTexels         lights as rgba32i texels, LIGHT_DATA_TEXELS per LightData (resources.glsl
 //                       lightAt): the light passes' reads of the lights
 //   distantTexels       distantTable as rgba32f texels: the composite's 16 reads per pixel
+//   volumeTexels        volumes as rgba32i texels, VOLUME_DATA_TEXELS per VolumeData (resources.glsl
+//                       volumeAt): the voxelize pass's reads of the volumes
+// VolumeData as 16-byte texels (std430 stride = sizeof = 304 bytes): texel t of volume i holds its bytes
+// 16t..16t+15 (resources.glsl volumeAt rebuilds the struct).
+#define BRUME_VOLUME_DATA_TEXELS 19
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
     X(shadowTexels, 26, shadowTransmittance, rgba32f) \
     X(lightClusterTexels, 27, lightClusters, r32i) \
     X(lightTexels, 28, lights, rgba32i) \
-    X(distantTexels, 29, distantTable, rgba32f)
+    X(distantTexels, 29, distantTable, rgba32f) \
+    X(volumeTexels, 30, volumes, rgba32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
