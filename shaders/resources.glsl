@@ -37,6 +37,40 @@ LightData lightAt(int i) { return lights[i]; }
 int clusterInt(int i) { return lightClusters[i]; }
 #endif
 
+// The sun shadow map's fit and depth i, and the local shadow maps' depth i. Shaders that define
+// BRUME_SHADOW_MAP_TEXELS read them through the texel views sunShadowFitTexels, sunShadowTexels and
+// localShadowTexels (docs/performance.md, "light3"); the others read the storage buffers.
+#ifdef BRUME_SHADOW_MAP_TEXELS
+SunShadowFit sunShadowFitAt() {
+    return SunShadowFit(texelFetch(sunShadowFitTexels, 0), texelFetch(sunShadowFitTexels, 1),
+                        texelFetch(sunShadowFitTexels, 2), texelFetch(sunShadowFitTexels, 3));
+}
+float sunShadowDepthAt(int i) { return texelFetch(sunShadowTexels, SUN_SHADOW_DEPTH_TEXEL + i).r; }
+float localShadowDepthAt(int i) { return texelFetch(localShadowTexels, i).r; }
+#else
+SunShadowFit sunShadowFitAt() { return sunShadowFit; }
+float sunShadowDepthAt(int i) { return sunShadowDepth[i]; }
+float localShadowDepthAt(int i) { return localShadowDepth[i]; }
+#endif
+
+// Volume i. Shaders that define BRUME_VOLUME_TEXELS read it through the texel view volumeTexels,
+// VOLUME_DATA_TEXELS rgba32i texels per volume, the float members as their stored bits; the texels of
+// members a shader does not use are not fetched (dead code once inlined). The others read volumes[].
+#ifdef BRUME_VOLUME_TEXELS
+vec4 volumeFloats(int t) { return intBitsToFloat(texelFetch(volumeTexels, t)); }
+VolumeData volumeAt(int i) {
+    int t = VOLUME_DATA_TEXELS * i;
+    return VolumeData(mat4(volumeFloats(t), volumeFloats(t + 1), volumeFloats(t + 2), volumeFloats(t + 3)),
+                      volumeFloats(t + 4), volumeFloats(t + 5), volumeFloats(t + 6), volumeFloats(t + 7),
+                      texelFetch(volumeTexels, t + 8), volumeFloats(t + 9), volumeFloats(t + 10),
+                      volumeFloats(t + 11), volumeFloats(t + 12), texelFetch(volumeTexels, t + 13),
+                      texelFetch(volumeTexels, t + 14), volumeFloats(t + 15), volumeFloats(t + 16),
+                      texelFetch(volumeTexels, t + 17), texelFetch(volumeTexels, t + 18));
+}
+#else
+VolumeData volumeAt(int i) { return volumes[i]; }
+#endif
+
 #ifdef BRUME_FROXEL_IMAGES
 #define BRUME_GLSL_IMAGE(id, binding_, format, type, flags) \
     layout(set = 0, binding = binding_, format) uniform type id;

@@ -172,6 +172,30 @@ TEST(SharedLayout, LightDataTexelsMatchLightAt) {
     EXPECT_EQ(offsetof(shd::LightData, kind), 64u);
 }
 
+// Passes that define BRUME_VOLUME_TEXELS read volumes[] as rgba32i texels (resources.glsl volumeAt):
+// VOLUME_DATA_TEXELS per volume, each member at the texel volumeAt takes it from (the matrix's columns
+// in texels 0..3, each a whole texel).
+TEST(SharedLayout, VolumeDataTexelsMatchVolumeAt) {
+    EXPECT_EQ(sizeof(shd::VolumeData), 16u * static_cast<size_t>(shd::VOLUME_DATA_TEXELS));
+    EXPECT_EQ(offsetof(shd::VolumeData, localFromWorld), 0u);
+    EXPECT_EQ(sizeof(shd::VolumeData::localFromWorld), 64u);
+    EXPECT_EQ(offsetof(shd::VolumeData, sigmaS_g), 4u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, sigmaA), 5u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, emission), 6u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, params), 7u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, kind), 8u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, worldMin), 9u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, worldMax), 10u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureParams), 11u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureScroll), 12u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureMin), 13u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureSize), 14u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailParams), 15u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailScroll), 16u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailMin), 17u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailSize), 18u * 16u);
+}
+
 TEST(SharedLayout, FroxelCountersStd430MatchCpp) {
     EXPECT_MEMBER("c430.", FroxelCounters, litFroxels);
     EXPECT_MEMBER("c430.", FroxelCounters, skippedFroxels);
@@ -190,6 +214,14 @@ TEST(SharedLayout, SunShadowFitStd430MatchesCpp) {
     if (depth == offsets.end()) depth = offsets.find("sDepth[0]");
     ASSERT_NE(depth, offsets.end()) << seenNames();
     EXPECT_EQ(depth->second, static_cast<int>(sizeof(shd::SunShadowFit)));
+    // Read through texel views where BRUME_SHADOW_MAP_TEXELS is defined (resources.glsl sunShadowFitAt,
+    // sunShadowDepthAt): the fit as whole rgba32f texels, the first depth at r32f texel SUN_SHADOW_DEPTH_TEXEL.
+    EXPECT_EQ(sizeof(shd::SunShadowFit), 16u * static_cast<size_t>(shd::SUN_SHADOW_FIT_TEXELS));
+    EXPECT_EQ(depth->second, 4 * shd::SUN_SHADOW_DEPTH_TEXEL);
+    EXPECT_EQ(offsetof(shd::SunShadowFit, centerRadius), 0u);
+    EXPECT_EQ(offsetof(shd::SunShadowFit, right), 16u);
+    EXPECT_EQ(offsetof(shd::SunShadowFit, up), 32u);
+    EXPECT_EQ(offsetof(shd::SunShadowFit, dir), 48u);
 }
 
 // The sizes the header comments promise (and that the GPU buffers are sized with).
