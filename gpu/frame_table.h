@@ -163,7 +163,7 @@ constexpr ResRef memoryOf(ResRef r) {
 }
 
 struct ResList {
-    std::array<ResRef, 14> items{};
+    std::array<ResRef, 12> items{};
     int count = 0;
     constexpr ResList(std::initializer_list<ResRef> list) {
         for (ResRef r : list) items[static_cast<size_t>(count++)] = r;

@@ -2,9 +2,8 @@
 // core/geometry.cpp shadeSurface with the froxel renderer's fog shadow. Writes radiance and view depth for the composite.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Lights, clusters, shadow maps and volumes through texel views (resources.glsl; docs/performance.md "light3").
+// Lights, clusters and volumes through texel views (resources.glsl; docs/performance.md "light3").
 #define BRUME_LIGHT_TEXELS
-#define BRUME_SHADOW_MAP_TEXELS
 #define BRUME_VOLUME_TEXELS
 #include "resources.glsl"
 #include "fog_shadow.glsl"

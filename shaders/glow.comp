@@ -5,8 +5,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
-// The light through its texel view (resources.glsl lightAt; docs/performance.md "light3").
-#define BRUME_LIGHT_TEXELS
 #include "resources.glsl"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
@@ -45,7 +43,7 @@ void main() {
     float rayPerDepth = length(viewRay);
     vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
     vec3 origin = frame.cameraPosition.xyz;
-    LightData l = lightAt(glow.light.x);
+    LightData l = lights[glow.light.x];
     LightGlowRay r = lightGlowRay(l, frame, origin, dir, viewDepth * rayPerDepth);
     if (r.radius <= 0.0f) return;
     ivec3 m = lightGlowFroxel(r, origin, dir, frame);

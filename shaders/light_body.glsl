@@ -17,7 +17,6 @@
 // SPEC_LOCAL_SHADOW_MAPS), where they would return 1. (They were #define variants before.)
 #define BRUME_FROXEL_IMAGES
 #define BRUME_LIGHT_TEXELS  // lights and their clusters through texel views (resources.glsl lightAt)
-#define BRUME_SHADOW_MAP_TEXELS  // the shadow maps too (resources.glsl sunShadowDepthAt)
 #define BRUME_VOLUME_TEXELS  // and the volumes of the exact closed form (resources.glsl volumeAt)
 #include "resources.glsl"
 #include "fog_shadow.glsl"

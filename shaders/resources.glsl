@@ -37,22 +37,6 @@ LightData lightAt(int i) { return lights[i]; }
 int clusterInt(int i) { return lightClusters[i]; }
 #endif
 
-// The sun shadow map's fit and depth i, and the local shadow maps' depth i. Shaders that define
-// BRUME_SHADOW_MAP_TEXELS read them through the texel views sunShadowFitTexels, sunShadowTexels and
-// localShadowTexels (docs/performance.md, "light3"); the others read the storage buffers.
-#ifdef BRUME_SHADOW_MAP_TEXELS
-SunShadowFit sunShadowFitAt() {
-    return SunShadowFit(texelFetch(sunShadowFitTexels, 0), texelFetch(sunShadowFitTexels, 1),
-                        texelFetch(sunShadowFitTexels, 2), texelFetch(sunShadowFitTexels, 3));
-}
-float sunShadowDepthAt(int i) { return texelFetch(sunShadowTexels, SUN_SHADOW_DEPTH_TEXEL + i).r; }
-float localShadowDepthAt(int i) { return texelFetch(localShadowTexels, i).r; }
-#else
-SunShadowFit sunShadowFitAt() { return sunShadowFit; }
-float sunShadowDepthAt(int i) { return sunShadowDepth[i]; }
-float localShadowDepthAt(int i) { return localShadowDepth[i]; }
-#endif
-
 // Volume i. Shaders that define BRUME_VOLUME_TEXELS read it through the texel view volumeTexels,
 // VOLUME_DATA_TEXELS rgba32i texels per volume, the float members as their stored bits; the texels of
 // members a shader does not use are not fetched (dead code once inlined). The others read volumes[].

@@ -4,8 +4,8 @@
 // cells of the pushed region (the cells the light pass's media region reads); the others are never read.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Lights, clusters and volumes through texel views (resources.glsl; docs/performance.md "light3").
-#define BRUME_LIGHT_TEXELS
+// The volumes through their texel view (resources.glsl volumeAt; docs/performance.md "light3"); the
+// lights and clusters through the storage buffers (lightAt, clusterInt: the views measured no gain here).
 #define BRUME_VOLUME_TEXELS
 #include "resources.glsl"
 #include "fog_shadow.glsl"

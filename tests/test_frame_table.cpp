@@ -171,9 +171,6 @@ TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
     EXPECT_EQ(memoryOf(TexelViewId::shadowTexels), ResRef(BufferId::shadowTransmittance));
     EXPECT_EQ(memoryOf(TexelViewId::lightClusterTexels), ResRef(BufferId::lightClusters));
     EXPECT_EQ(memoryOf(TexelViewId::lightTexels), ResRef(BufferId::lights));
-    EXPECT_EQ(memoryOf(TexelViewId::sunShadowFitTexels), ResRef(BufferId::sunShadowMap));
-    EXPECT_EQ(memoryOf(TexelViewId::sunShadowTexels), ResRef(BufferId::sunShadowMap));
-    EXPECT_EQ(memoryOf(TexelViewId::localShadowTexels), ResRef(BufferId::localShadowMaps));
     EXPECT_EQ(memoryOf(TexelViewId::volumeTexels), ResRef(BufferId::volumes));
     EXPECT_EQ(memoryOf(BufferId::lights), ResRef(BufferId::lights));
     for (const TexelViewDecl& v : kTexelViews) {

@@ -66,21 +66,16 @@
 //   lightClusterTexels  lightClusters as r32i texels: the light passes' reads of the cluster lists
 //   lightTexels         lights as rgba32i texels, LIGHT_DATA_TEXELS per LightData (resources.glsl
 //                       lightAt): the light passes' reads of the lights
-//   sunShadowFitTexels  sunShadowMap's SunShadowFit as SUN_SHADOW_FIT_TEXELS rgba32f texels
-//   sunShadowTexels     sunShadowMap as r32f texels, depth i at SUN_SHADOW_DEPTH_TEXEL + i (sun_shadow.h)
-//   localShadowTexels   localShadowMaps as r32f texels (resources.glsl localShadowDepthAt)
 //   volumeTexels        volumes as rgba32i texels, VOLUME_DATA_TEXELS per VolumeData (resources.glsl
-//                       volumeAt)
+//                       volumeAt): the closed forms' reads of the volumes (light exact, geometry,
+//                       shadow volume, distant fog)
 // Which passes read a buffer through its views is a define per shader (resources.glsl); a pass reads
 // a buffer through its views or through the buffer, not both (docs/performance.md, "light3").
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
     X(shadowTexels, 26, shadowTransmittance, rgba32f) \
     X(lightClusterTexels, 27, lightClusters, r32i) \
     X(lightTexels, 28, lights, rgba32i) \
-    X(sunShadowFitTexels, 29, sunShadowMap, rgba32f) \
-    X(sunShadowTexels, 30, sunShadowMap, r32f) \
-    X(localShadowTexels, 31, localShadowMaps, r32f) \
-    X(volumeTexels, 32, volumes, rgba32i)
+    X(volumeTexels, 29, volumes, rgba32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

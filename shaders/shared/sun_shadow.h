@@ -41,10 +41,6 @@ struct SunShadowFit {
     vec4 up;            // xyz: unit light-space y
     vec4 dir;           // xyz: unit direction the light travels (depth axis)
 };
-// The buffer read through texel views (resources.glsl sunShadowFitAt, sunShadowDepthAt): the fit as
-// SUN_SHADOW_FIT_TEXELS rgba32f texels, depth i as r32f texel SUN_SHADOW_DEPTH_TEXEL + i.
-BRUME_CONST int SUN_SHADOW_FIT_TEXELS = 4;
-BRUME_CONST int SUN_SHADOW_DEPTH_TEXEL = 16;
 
 // The fit for light l (directional) and frame f.
 BRUME_FUNC SunShadowFit fitSunShadow(FrameUniforms f, LightData l, int resolution) {
