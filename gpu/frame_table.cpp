@@ -21,13 +21,14 @@ const std::array<PassDecl, 11> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
-     {B::frame, B::volumes, B::lights, B::lightClusters, B::vdbGrids},
+     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids},
      {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
     // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::SurfacesChanged, Record::Geometry,
-     {B::frame, B::lights, B::lightClusters, T::shadowTexels, B::sunShadowMap, B::localShadowMaps, B::volumes},
+     {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
+      T::volumeTexels},
      {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
@@ -38,13 +39,13 @@ const std::array<PassDecl, 11> kPasses{{
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Shapes, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
-      I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap,
+      B::localShadowMaps, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::Shapes, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
-     {B::frame, B::volumes, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
-      I::mediaScatteringG, I::mediaEmission, B::exactList},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap,
+      B::localShadowMaps, I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
     // (core/media_region.h), then copied back over sourceImage and mediaExtinction for the integrate
@@ -64,7 +65,7 @@ const std::array<PassDecl, 11> kPasses{{
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
     // the composite interpolates it.
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
-     {B::frame, B::volumes, B::lights, B::lightClusters, I::sceneDepth},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, I::sceneDepth},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,

@@ -5,6 +5,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
+// Lights, clusters and volumes through texel views (resources.glsl; docs/performance.md "light3").
+#define BRUME_LIGHT_TEXELS
+#define BRUME_VOLUME_TEXELS
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "distant_table.h"
@@ -19,22 +22,23 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
     vec3 middle = frame.cameraPosition.xyz + dir * sqrt(s0 * s1);
     DistantSegment seg = emptyDistantSegment();
     for (int i = 0; i < frame.counts.z; ++i) {
-        float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, s0, s1);
-        seg = addDistantVolume(seg, volumes[i], len, frame.ambient.rgb);
+        float len = distantDensityLength(volumeAt(i), frame.cameraPosition.xyz, dir, s0, s1);
+        seg = addDistantVolume(seg, volumeAt(i), len, frame.ambient.rgb);
     }
     // The surface lights (core/light_reach.h) hold every directional light that shines, in
     // increasing order, before any other: the CPU's sum over all lights, stopping at the first
     // local one (a skipped trip would cost as much as a taken one on lavapipe). Specialized: exactly
     // the directional lights, a fixed trip count.
     int reach = lightReachOffset(frame.froxelDims.xyz);
-    int listed = SPEC_DIRECTIONAL_LIGHTS >= 0 ? SPEC_DIRECTIONAL_LIGHTS : lightClusters[reach];
+    int listed = SPEC_DIRECTIONAL_LIGHTS >= 0 ? SPEC_DIRECTIONAL_LIGHTS : clusterInt(reach);
     for (int k = 0; k < listed; ++k) {
-        int j = lightClusters[reach + 1 + k];
-        if (SPEC_DIRECTIONAL_LIGHTS < 0 && lights[j].kind.x != LIGHT_DIRECTIONAL) break;
-        vec3 t = lightFogTransmittance(lights[j], middle, -lights[j].direction.xyz, BRUME_HUGE);
+        int j = clusterInt(reach + 1 + k);
+        LightData l = lightAt(j);
+        if (SPEC_DIRECTIONAL_LIGHTS < 0 && l.kind.x != LIGHT_DIRECTIONAL) break;
+        vec3 t = lightFogTransmittance(l, middle, -l.direction.xyz, BRUME_HUGE);
         for (int i = 0; i < frame.counts.z; ++i) {
-            float len = distantDensityLength(volumes[i], frame.cameraPosition.xyz, dir, s0, s1);
-            seg = addDistantLight(seg, volumes[i], len, distantLightPerSigmaS(lights[j], dir, volumes[i].sigmaS_g.w) * t);
+            float len = distantDensityLength(volumeAt(i), frame.cameraPosition.xyz, dir, s0, s1);
+            seg = addDistantLight(seg, volumeAt(i), len, distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
         }
     }
     return accumulateDistant(a, seg);

@@ -1,5 +1,6 @@
 // The GPU's loop over volumes around the shared closed forms of shared/shadows.h (core:
-// lightFogTransmittance): the fog's transmittance from p toward light l.
+// lightFogTransmittance): the fog's transmittance from p toward light l. Volumes through
+// resources.glsl volumeAt (a texel view where the shader defines BRUME_VOLUME_TEXELS).
 // Specialized pipelines (shared/specialization.h) compile out the point/spot and vdb cases a scene lacks.
 int localFogShadowsFlag() { return SPEC_LOCAL_FOG_SHADOWS != 0 ? frame.localFogShadows : 0; }
 
@@ -13,13 +14,13 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
         // Unrolled by hand with each volume's kind a constant: only that kind's closed form is
         // built for it (a loop would run every kind's code for every volume on lavapipe).
 #define BRUME_LISTED_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumes[i], p, toLight, distance);
+    if (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumeAt(i), p, toLight, distance);
         BRUME_LISTED_VOLUME(0) BRUME_LISTED_VOLUME(1) BRUME_LISTED_VOLUME(2) BRUME_LISTED_VOLUME(3)
         BRUME_LISTED_VOLUME(4) BRUME_LISTED_VOLUME(5) BRUME_LISTED_VOLUME(6) BRUME_LISTED_VOLUME(7)
         BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)
 #undef BRUME_LISTED_VOLUME
     } else {
-        for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumes[i], p, toLight, distance);
+        for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumeAt(i), p, toLight, distance);
     }
     return exp(-tau);
 }

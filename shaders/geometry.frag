@@ -2,6 +2,9 @@
 // core/geometry.cpp shadeSurface with the froxel renderer's fog shadow. Writes radiance and view depth for the composite.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// Lights, clusters and volumes through texel views (resources.glsl; docs/performance.md "light3").
+#define BRUME_LIGHT_TEXELS
+#define BRUME_VOLUME_TEXELS
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
@@ -31,10 +34,10 @@ void main() {
     float sunVisibility = sunShadowVisibility(sunLight, origin);
     // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
     int reach = lightReachOffset(frame.froxelDims.xyz);
-    int count = lightClusters[reach];
+    int count = clusterInt(reach);
     for (int k = 0; k < count; ++k) {
-        int i = lightClusters[reach + 1 + k];
-        LightSample ls = evalLight(lights[i], worldPos);
+        int i = clusterInt(reach + 1 + k);
+        LightSample ls = evalLight(lightAt(i), worldPos);
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
         radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *

@@ -17,6 +17,7 @@
 // SPEC_LOCAL_SHADOW_MAPS), where they would return 1. (They were #define variants before.)
 #define BRUME_FROXEL_IMAGES
 #define BRUME_LIGHT_TEXELS  // lights and their clusters through texel views (resources.glsl lightAt)
+#define BRUME_VOLUME_TEXELS  // and the volumes of the exact closed form (resources.glsl volumeAt)
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"

@@ -37,17 +37,18 @@ LightData lightAt(int i) { return lights[i]; }
 int clusterInt(int i) { return lightClusters[i]; }
 #endif
 
-// Volume i. Shaders that define BRUME_VOLUME_TEXELS before this file (voxelize) read it through the
-// texel view volumeTexels (the same reason; docs/performance.md, "voxel"), the others the storage buffer.
+// Volume i. Shaders that define BRUME_VOLUME_TEXELS read it through the texel view volumeTexels,
+// VOLUME_DATA_TEXELS rgba32i texels per volume, the float members as their stored bits; the texels of
+// members a shader does not use are not fetched (dead code once inlined). The others read volumes[].
 #ifdef BRUME_VOLUME_TEXELS
-vec4 volumeTexelF(int t) { return intBitsToFloat(texelFetch(volumeTexels, t)); }
+vec4 volumeFloats(int t) { return intBitsToFloat(texelFetch(volumeTexels, t)); }
 VolumeData volumeAt(int i) {
-    int t = BRUME_VOLUME_DATA_TEXELS * i;
-    return VolumeData(mat4(volumeTexelF(t), volumeTexelF(t + 1), volumeTexelF(t + 2), volumeTexelF(t + 3)),
-                      volumeTexelF(t + 4), volumeTexelF(t + 5), volumeTexelF(t + 6), volumeTexelF(t + 7),
-                      texelFetch(volumeTexels, t + 8), volumeTexelF(t + 9), volumeTexelF(t + 10),
-                      volumeTexelF(t + 11), volumeTexelF(t + 12), texelFetch(volumeTexels, t + 13),
-                      texelFetch(volumeTexels, t + 14), volumeTexelF(t + 15), volumeTexelF(t + 16),
+    int t = VOLUME_DATA_TEXELS * i;
+    return VolumeData(mat4(volumeFloats(t), volumeFloats(t + 1), volumeFloats(t + 2), volumeFloats(t + 3)),
+                      volumeFloats(t + 4), volumeFloats(t + 5), volumeFloats(t + 6), volumeFloats(t + 7),
+                      texelFetch(volumeTexels, t + 8), volumeFloats(t + 9), volumeFloats(t + 10),
+                      volumeFloats(t + 11), volumeFloats(t + 12), texelFetch(volumeTexels, t + 13),
+                      texelFetch(volumeTexels, t + 14), volumeFloats(t + 15), volumeFloats(t + 16),
                       texelFetch(volumeTexels, t + 17), texelFetch(volumeTexels, t + 18));
 }
 #else

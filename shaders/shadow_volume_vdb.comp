@@ -4,6 +4,9 @@
 // walk would slow the pass for every scene.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// The volumes through their texel view (resources.glsl volumeAt; docs/performance.md "light3"); the
+// lights and clusters through the storage buffers (lightAt, clusterInt: the views measured no gain here).
+#define BRUME_VOLUME_TEXELS
 #include "resources.glsl"
 #include "fog_shadow.glsl"
 #include "vdb_sample.glsl"
@@ -22,14 +25,15 @@ void main() {
     int depth = region.hi.z - region.lo.z;
     int k = id.z / depth;
     ivec3 cell = ivec3(id.xy, id.z - k * depth) + region.lo.xyz;
-    if (cell.x >= cells.x || cell.y >= cells.y || k >= lightClusters[layers]) return;
-    int light = lightClusters[layers + 1 + k];
+    if (cell.x >= cells.x || cell.y >= cells.y || k >= clusterInt(layers)) return;
+    int light = clusterInt(layers + 1 + k);
+    LightData l = lightAt(light);
     ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
     vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
-    LightSample ls = evalLight(lights[light], p);
+    LightSample ls = evalLight(l, p);
     shadowTransmittance[shadowVolumeIndex(cells, light, cell)] =
-        vec4(lightFogTransmittance(lights[light], p, ls.toLight, ls.distance), 0.0f);
+        vec4(lightFogTransmittance(l, p, ls.toLight, ls.distance), 0.0f);
     if (frame.vdbShadowSamples <= 0) return;
     shadowTransmittance[shadowVolumeIndex(cells, vdbShadowLayer(light, frame.counts.w), cell)] =
-        vec4(vdbFogOpticalDepth(lights[light], p, ls.toLight, ls.distance), 0.0f);
+        vec4(vdbFogOpticalDepth(l, p, ls.toLight, ls.distance), 0.0f);
 }

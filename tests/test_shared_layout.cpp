@@ -173,27 +173,28 @@ TEST(SharedLayout, LightDataTexelsMatchLightAt) {
     EXPECT_EQ(offsetof(shd::LightData, kind), 64u);
 }
 
-// The voxelize pass reads volumes[] as rgba32i texels (resources.glsl volumeAt): BRUME_VOLUME_DATA_TEXELS per
-// volume, member m in texel offsetof(m) / 16 (a mat4 in the 4 texels from its own), in the order volumeAt
-// builds the struct.
+// Passes that define BRUME_VOLUME_TEXELS read volumes[] as rgba32i texels (resources.glsl volumeAt):
+// VOLUME_DATA_TEXELS per volume, each member at the texel volumeAt takes it from (the matrix's columns
+// in texels 0..3, each a whole texel).
 TEST(SharedLayout, VolumeDataTexelsMatchVolumeAt) {
-    EXPECT_EQ(sizeof(shd::VolumeData), 16u * static_cast<size_t>(BRUME_VOLUME_DATA_TEXELS));
+    EXPECT_EQ(sizeof(shd::VolumeData), 16u * static_cast<size_t>(shd::VOLUME_DATA_TEXELS));
     EXPECT_EQ(offsetof(shd::VolumeData, localFromWorld), 0u);
-    EXPECT_EQ(offsetof(shd::VolumeData, sigmaS_g), 16u * 4);
-    EXPECT_EQ(offsetof(shd::VolumeData, sigmaA), 16u * 5);
-    EXPECT_EQ(offsetof(shd::VolumeData, emission), 16u * 6);
-    EXPECT_EQ(offsetof(shd::VolumeData, params), 16u * 7);
-    EXPECT_EQ(offsetof(shd::VolumeData, kind), 16u * 8);
-    EXPECT_EQ(offsetof(shd::VolumeData, worldMin), 16u * 9);
-    EXPECT_EQ(offsetof(shd::VolumeData, worldMax), 16u * 10);
-    EXPECT_EQ(offsetof(shd::VolumeData, textureParams), 16u * 11);
-    EXPECT_EQ(offsetof(shd::VolumeData, textureScroll), 16u * 12);
-    EXPECT_EQ(offsetof(shd::VolumeData, textureMin), 16u * 13);
-    EXPECT_EQ(offsetof(shd::VolumeData, textureSize), 16u * 14);
-    EXPECT_EQ(offsetof(shd::VolumeData, detailParams), 16u * 15);
-    EXPECT_EQ(offsetof(shd::VolumeData, detailScroll), 16u * 16);
-    EXPECT_EQ(offsetof(shd::VolumeData, detailMin), 16u * 17);
-    EXPECT_EQ(offsetof(shd::VolumeData, detailSize), 16u * 18);
+    EXPECT_EQ(sizeof(shd::VolumeData::localFromWorld), 64u);
+    EXPECT_EQ(offsetof(shd::VolumeData, sigmaS_g), 4u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, sigmaA), 5u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, emission), 6u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, params), 7u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, kind), 8u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, worldMin), 9u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, worldMax), 10u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureParams), 11u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureScroll), 12u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureMin), 13u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, textureSize), 14u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailParams), 15u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailScroll), 16u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailMin), 17u * 16u);
+    EXPECT_EQ(offsetof(shd::VolumeData, detailSize), 18u * 16u);
 }
 
 TEST(SharedLayout, FroxelCountersStd430MatchCpp) {

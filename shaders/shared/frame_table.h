@@ -68,10 +68,10 @@
 //                       lightAt): the light passes' reads of the lights
 //   distantTexels       distantTable as rgba32f texels: the composite's 16 reads per pixel
 //   volumeTexels        volumes as rgba32i texels, VOLUME_DATA_TEXELS per VolumeData (resources.glsl
-//                       volumeAt): the voxelize pass's reads of the volumes
-// VolumeData as 16-byte texels (std430 stride = sizeof = 304 bytes): texel t of volume i holds its bytes
-// 16t..16t+15 (resources.glsl volumeAt rebuilds the struct).
-#define BRUME_VOLUME_DATA_TEXELS 19
+//                       volumeAt): voxelize's and the closed forms' reads of the volumes (light
+//                       exact, geometry, shadow volume, distant fog)
+// Which passes read a buffer through its views is a define per shader (resources.glsl); a pass reads
+// a buffer through its views or through the buffer, not both (docs/performance.md, "light3").
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
     X(shadowTexels, 26, shadowTransmittance, rgba32f) \
     X(lightClusterTexels, 27, lightClusters, r32i) \

@@ -78,6 +78,9 @@ struct LightData {
 // LightData as 16-byte texels (std430 stride = sizeof = 80 bytes): the light passes read lights[]
 // through the rgba32i texel view lightTexels, texel t holding bytes 16t..16t+15 (resources.glsl lightAt).
 BRUME_CONST int LIGHT_DATA_TEXELS = 5;
+// VolumeData as 16-byte texels (std430 stride = sizeof = 304 bytes): the passes that define
+// BRUME_VOLUME_TEXELS read volumes[] through the rgba32i texel view volumeTexels (resources.glsl volumeAt).
+BRUME_CONST int VOLUME_DATA_TEXELS = 19;
 
 // The slots of LightData.kind and VolumeData.kind after x (the kind), by name, for C++ and GLSL
 // (compileScene writes them).
