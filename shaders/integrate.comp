@@ -24,14 +24,12 @@ void main() {
     vec2 pixel = (vec2(column) + vec2(0.5f)) * float(frame.froxelDims.w);
     Accumulated acc = emptyAccumulated();
     // sliceRayLength(s, pixel, frame) with each slice boundary's depth evaluated once (a pow on
-    // lavapipe): slice s's far depth is slice s + 1's near depth, the same expression.
-    float n = float(frame.froxelDims.z);
+    // lavapipe): slice s's far boundary is slice s + 1's near one.
     float rayScale = length(viewRayFromPixel(pixel, frame));
-    float zNear = region.lo.z == 0 ? 0.0f : viewDepthFromSliceT(float(region.lo.z) / n, frame.froxelRange.x,
-                                                                 frame.froxelRange.y, frame.froxelRange.z);
+    float zNear = sliceBoundaryDepth(region.lo.z, frame);
     for (int s = region.lo.z; s < region.hi.z; ++s) {
         ivec3 id = ivec3(column, s);
-        float zFar = viewDepthFromSliceT(float(s + 1) / n, frame.froxelRange.x, frame.froxelRange.y, frame.froxelRange.z);
+        float zFar = sliceBoundaryDepth(s + 1, frame);
         float d = (zFar - zNear) * rayScale;
         zNear = zFar;
 #ifdef BRUME_TEMPORAL_REST

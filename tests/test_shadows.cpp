@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -389,6 +390,21 @@ TEST(FogShadowClosedForm, BoxMatchesADenseIntegralOnDegenerateRays) {
         }
     }
     std::printf("worst |closed form - dense integral| of the box: %.2e m\n", worst);
+}
+
+// Fades at the bottom of edge_fade's range [0, 1]: a fade under float's resolution at 1 is a hard
+// edge, and a denormal one (1 / fade overflows) must not turn the chord into NaN.
+TEST(FogShadowClosedForm, BoxWithAVanishingFadeIsTheHardChord) {
+    for (float fade : {1.0e-7f, 1.0e-30f, 1.0e-40f, std::numeric_limits<float>::denorm_min()}) {
+        const shd::VolumeData v = compileVolume(boxFog({0, 0, 0}, {2, 2, 2}, fade, 0.5f, 0.1f));
+        const shd::VolumeData hard = compileVolume(boxFog({0, 0, 0}, {2, 2, 2}, 0.0f, 0.5f, 0.1f));
+        const glm::vec3 o(-3.0f, 0.3f, 0.2f), d = glm::normalize(glm::vec3(1.0f, 0.1f, -0.05f));
+        for (float maxDist : {shd::BRUME_HUGE, 2.5f}) {
+            const float got = shd::boxDensityLength(v, o, d, maxDist);
+            ASSERT_TRUE(std::isfinite(got)) << "fade " << fade;
+            EXPECT_NEAR(got, shd::boxDensityLength(hard, o, d, maxDist), 1e-5f) << "fade " << fade;
+        }
+    }
 }
 
 // The exponential height fog's density length (shared/distant.h heightExponentialLength) where the

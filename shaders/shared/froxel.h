@@ -73,12 +73,16 @@ BRUME_FUNC float froxelRadius(int s, FrameUniforms f) {
 }
 
 // Length of the camera ray inside slice s of the pixel column through `pixel` [m].
+// View depth of slice boundary s (0 = the camera, froxelDims.z = the froxel far): slice s spans
+// boundaries s and s + 1.
+BRUME_FUNC float sliceBoundaryDepth(int s, FrameUniforms f) {
+    return s == 0 ? 0.0f
+                  : viewDepthFromSliceT(float(s) / float(f.froxelDims.z), f.froxelRange.x, f.froxelRange.y,
+                                        f.froxelRange.z);
+}
+
 BRUME_FUNC float sliceRayLength(int s, vec2 pixel, FrameUniforms f) {
-    float n = float(f.froxelDims.z);
-    float z0 = s == 0 ? 0.0f
-                      : viewDepthFromSliceT(float(s) / n, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
-    float z1 = viewDepthFromSliceT(float(s + 1) / n, f.froxelRange.x, f.froxelRange.y, f.froxelRange.z);
-    return (z1 - z0) * length(viewRayFromPixel(pixel, f));
+    return (sliceBoundaryDepth(s + 1, f) - sliceBoundaryDepth(s, f)) * length(viewRayFromPixel(pixel, f));
 }
 
 // The integrated volume stores, at slice s, the result from the camera to the far boundary of s,

@@ -124,7 +124,10 @@ BRUME_FUNC float boxDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
     t = sortedPair(c[1], c[3]); c[1] = t.x; c[3] = t.y;
     t = sortedPair(c[2], c[3]); c[2] = t.x; c[3] = t.y;
     float e0 = 1.0f - fade;
-    float invFade = 1.0f / fade;
+    // A fade below float's resolution at 1 (e0 rounds to 1) leaves fadeU - e0 = 0 at every end: any
+    // finite 1 / fade then gives x = 0. The floor keeps a denormal fade (the range allows it) from
+    // making 1 / fade infinite and x = 0 x inf = NaN.
+    float invFade = 1.0f / max(fade, 1.0e-30f);
     FadeEnd prev = fadeEnd(lo, ld, chord.x, e0, invFade);
     FadeEnd next = fadeEnd(lo, ld, c[0], e0, invFade);
     float total = fadedPieceLength(prev, next, c[0] - chord.x);
