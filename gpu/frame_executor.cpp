@@ -462,7 +462,7 @@ void dispatchPass(const PassContext& ctx) {
     }
 }
 
-Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar,
+Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar,
                                              bool readBackVolumes, int historyWriteIndex) {
     timer.reset(cmd);
     const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
@@ -517,7 +517,8 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
         ctx.glow = &glow;
         ctx.ambient = ambient;
         ctx.cameraFar = cameraFar;
-        ctx.vertexCount = vertexCount;
+        ctx.triangleVertices = mesh.triangleVertices;
+        ctx.sphereVertices = mesh.sphereVertices;
         // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
         const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest);
         if (p.dispatch != Dispatch::Raster && dispatches) {
@@ -540,7 +541,7 @@ Result<void> GpuRenderer::State::recordFrame(uint32_t vertexCount, glm::vec3 amb
             case Record::ShadowCells: recordShadowCells(ctx); break;
             case Record::Composite: recordComposite(ctx); break;
             case Record::Geometry:
-                BRUME_TRY(geometry.usePipeline(*device, layout, surfaceSpec, variant.shapes));
+                BRUME_TRY(geometry.usePipeline(*device, layout, surfaceSpec, variant.shapes, mesh.sphereVertices > 0));
                 geometry.record(ctx);
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;

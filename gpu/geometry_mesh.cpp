@@ -51,34 +51,54 @@ void box(const Emitter& e, const Geometry& g) {
     }
 }
 
-void sphere(const Emitter& e, const Geometry& g) {
-    auto dir = [](int seg, int ring) {
-        const float phi = 2.0f * shd::BRUME_PI * static_cast<float>(seg) / kSphereSegments;
-        const float theta = shd::BRUME_PI * static_cast<float>(ring) / kSphereRings;
-        return vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+// The proxy of a sphere (geometry_mesh.h): its vertices carry the centre and radius in `normal`.
+void sphereProxy(std::vector<GeometryVertex>& out, const Geometry& g, const shd::FrameUniforms& f) {
+    const vec4 sphere(g.center, g.radius);
+    const vec4 albedo(g.albedo, 1.0f), emission(g.emission, 0.0f);
+    auto triangle = [&](vec3 a, vec3 b, vec3 c) {
+        for (const vec3& p : {a, b, c}) out.push_back({vec4(p, 1.0f), sphere, albedo, emission});
     };
-    for (int r = 0; r < kSphereRings; ++r) {
-        for (int s = 0; s < kSphereSegments; ++s) {
-            const vec3 a = dir(s, r), b = dir(s + 1, r), c = dir(s + 1, r + 1), d = dir(s, r + 1);
-            e.quad(g.center + g.radius * a, g.center + g.radius * b, g.center + g.radius * c,
-                   g.center + g.radius * d, a, b, c, d);
-        }
+    auto quad = [&](vec3 a, vec3 b, vec3 c, vec3 d) { triangle(a, b, c), triangle(a, c, d); };
+    const vec3 camera(f.cameraPosition);
+    const vec3 axis = g.center - camera;
+    const float d = glm::length(axis), r = g.radius;
+    // The view rays' smallest cosine to the view direction: that of the frustum's corner rays.
+    const float cosCorner = 1.0f / glm::length(vec3(f.projection.x, f.projection.y, 1.0f));
+    const float planeDistance = d - r;
+    if (d > 1.5f * r && planeDistance * cosCorner > 2.0f * f.projection.z) {
+        const vec3 a = axis / d;
+        const vec3 u = glm::normalize(glm::cross(a, std::abs(a.y) < 0.9f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+        const vec3 v = glm::cross(a, u);
+        // The tangent cone's radius in that plane, plus 1% for rounding; the sphere lies behind the plane.
+        const float h = 1.01f * planeDistance * r / std::sqrt((d - r) * (d + r));
+        const vec3 c = camera + a * planeDistance;
+        quad(c - h * u - h * v, c + h * u - h * v, c + h * u + h * v, c - h * u + h * v);
+        return;
     }
+    const float h = 1.01f * r;
+    auto corner = [&](int k) { return g.center + h * vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1); };
+    static constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+    for (const auto& q : kFaces) quad(corner(q[0]), corner(q[1]), corner(q[2]), corner(q[3]));
 }
 
 }  // namespace
 
-std::vector<GeometryVertex> tessellateGeometry(const std::vector<Geometry>& geometry, const shd::FrameUniforms& frame) {
-    std::vector<GeometryVertex> out;
+GeometryMesh tessellateGeometry(const std::vector<Geometry>& geometry, const shd::FrameUniforms& frame) {
+    GeometryMesh mesh;
+    std::vector<GeometryVertex>& out = mesh.vertices;
     for (const Geometry& g : geometry) {
         const Emitter e{out, vec4(g.albedo, 1.0f), vec4(g.emission, 0.0f)};
         switch (g.type) {
             case GeometryType::Plane: plane(e, g, frame); break;
             case GeometryType::Box: box(e, g); break;
-            case GeometryType::Sphere: sphere(e, g); break;
+            case GeometryType::Sphere: break;
         }
     }
-    return out;
+    mesh.triangleVertices = static_cast<uint32_t>(out.size());
+    for (const Geometry& g : geometry)
+        if (g.type == GeometryType::Sphere) sphereProxy(out, g, frame);
+    mesh.sphereVertices = static_cast<uint32_t>(out.size()) - mesh.triangleVertices;
+    return mesh;
 }
 
 }  // namespace brume::gpu

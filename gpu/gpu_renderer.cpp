@@ -268,7 +268,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const glm::ivec3 dims(frame.froxelDims);
     const glm::ivec2 size(request.width, request.height);
     BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
-    const std::vector<GeometryVertex> vertices = tessellateGeometry(scene.geometry, frame);
+    const GeometryMesh mesh = tessellateGeometry(scene.geometry, frame);
 
     // The same map as the CPU froxel renderer's (ray cast on the host); it does not follow the jitter.
     const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
@@ -276,7 +276,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const size_t sunBytes = sun.depth.size() * sizeof(float);
     const LocalShadowMaps& local = s_->localShadows.get(cs, scene.geometry, frame.localShadowTexels, request.threads);
     const size_t localBytes = local.depth.size() * sizeof(float);
-    BRUME_TRY(s_->prepare(size, dims, cs, vertices.size() * sizeof(GeometryVertex), frame.shadowReduction, sunBytes,
+    BRUME_TRY(s_->prepare(size, dims, cs, mesh.bytes(), frame.shadowReduction, sunBytes,
                           localBytes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
@@ -298,7 +298,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const FroxelRegion lightFroxels{media.lo,
                                     glm::min(media.lo + (r.mediaExtent + groupSize - 1) / groupSize * groupSize, dims)};
     const LightReach lightReach =
-        buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!vertices.empty(), &lightFroxels);
+        buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!mesh.vertices.empty(), &lightFroxels);
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->spec = sceneSpecKey(cs, frame, lightReach);
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
@@ -309,11 +309,11 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h), and in
     // them only the cells some reader needs: those around the media region's froxels (the whole
     // volume when surfaces read vdb layers).
-    const FroxelRegion shadowCells = shadowCellRegion(media, frame, /*surfaces=*/!vertices.empty());
+    const FroxelRegion shadowCells = shadowCellRegion(media, frame, /*surfaces=*/!mesh.vertices.empty());
     const glm::ivec3 shadowCellExtent = shadowCells.empty() ? glm::ivec3(0) : shadowCells.hi - shadowCells.lo;
     r.shadowCells = shadowCells;
     r.shadowExtent = {shadowCellExtent.x, shadowCellExtent.y, shadowCellExtent.z * reach[1 + cs.lights.size()]};
-    if (!vertices.empty()) std::memcpy(r.vertices.mapped, vertices.data(), vertices.size() * sizeof(GeometryVertex));
+    if (!mesh.vertices.empty()) std::memcpy(r.vertices.mapped, mesh.vertices.data(), mesh.bytes());
     std::memcpy(r[BufferId::sunShadowMap].mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)
         std::memcpy(static_cast<char*>(r[BufferId::sunShadowMap].mapped) + sizeof(sun.fit), sun.depth.data(), sunBytes);
@@ -353,7 +353,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         std::vector<uint8_t> surfaces;
         if (request.reuseSurfaces)
             surfaces = surfaceInputs(frame, r, cs.volumes.size() * sizeof(shd::VolumeData),
-                                     cs.lights.size() * sizeof(shd::LightData), reach, vertices.size() * sizeof(GeometryVertex),
+                                     cs.lights.size() * sizeof(shd::LightData), reach, mesh.bytes(),
                                      ShadowMapsKey{sun.depth.data(), sun.depth.size(), s_->sunShadow.builds(),
                                                    local.depth.data(), local.depth.size(), s_->localShadows.builds()},
                                      s_->surfaceSpec, s_->variant.shapes);
@@ -365,7 +365,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         BRUME_VK(vkBeginCommandBuffer(s_->cmd, &begin), "begin recording the frame");
-        BRUME_TRY(s_->recordFrame(static_cast<uint32_t>(vertices.size()), cs.ambient, frame.projection.w,
+        BRUME_TRY(s_->recordFrame(mesh, cs.ambient, frame.projection.w,
                                   last && readBackVolumes, t.writeIndex));
         BRUME_VK(vkEndCommandBuffer(s_->cmd), "record the frame");
         Result<double> wall = s_->submitAndWait();

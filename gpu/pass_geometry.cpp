@@ -2,6 +2,7 @@
 #include "passes.h"
 #include "vk_check.h"
 
+#include <algorithm>
 #include <array>
 
 namespace brume::gpu {
@@ -56,14 +57,16 @@ Result<RenderPassOwner> createRenderPass(const Device& device) {
     return RenderPassOwner(device.vk(), rp);
 }
 
-// fragment == nullptr: the depth pre-pass's pipeline (no fragment shader, no colour writes).
+// depthOnly: a pipeline of the depth pre-pass (no colour writes; fragment == nullptr: no fragment
+// shader); otherwise a shading pipeline, tested EQUAL against the pre-pass's depth. The vertex shader
+// reads GeometryVertex's first `attributes` vec4s.
 Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layout, VkRenderPass renderPass,
-                                     const SpecKey& key, const char* fragment) {
-    const bool depthOnly = fragment == nullptr;
-    Result<ShaderModuleOwner> vert = createShaderModule(device, "geometry.vert");
+                                     const SpecKey& key, const char* vertex, const char* fragment, bool depthOnly,
+                                     uint32_t attributes = 4) {
+    Result<ShaderModuleOwner> vert = createShaderModule(device, vertex);
     if (!vert) return vert.error();
     ShaderModuleOwner frag;
-    if (!depthOnly) {
+    if (fragment) {
         Result<ShaderModuleOwner> f = createShaderModule(device, fragment);
         if (!f) return f.error();
         frag = std::move(f.value());
@@ -81,7 +84,7 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     VkPipelineVertexInputStateCreateInfo vertexInput = vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
     vertexInput.vertexBindingDescriptionCount = 1;
     vertexInput.pVertexBindingDescriptions = &binding;
-    vertexInput.vertexAttributeDescriptionCount = static_cast<uint32_t>(attrs.size());
+    vertexInput.vertexAttributeDescriptionCount = std::min(attributes, static_cast<uint32_t>(attrs.size()));
     vertexInput.pVertexAttributeDescriptions = attrs.data();
     VkPipelineInputAssemblyStateCreateInfo assembly = vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -109,7 +112,7 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     dynamic.pDynamicStates = dynamicStates.data();
 
     VkGraphicsPipelineCreateInfo info = vkStruct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
-    info.stageCount = depthOnly ? 1 : static_cast<uint32_t>(stages.size());
+    info.stageCount = fragment ? static_cast<uint32_t>(stages.size()) : 1;
     info.pStages = stages.data();
     info.pVertexInputState = &vertexInput;
     info.pInputAssemblyState = &assembly;
@@ -124,7 +127,8 @@ Result<PipelineOwner> createPipeline(const Device& device, VkPipelineLayout layo
     VkPipeline pipeline = VK_NULL_HANDLE;
     BRUME_VK(vkCreateGraphicsPipelines(device.vk(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
              "create the geometry pipeline");
-    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE, "geometry pipeline [" + key.text() + "]");
+    device.name(pipeline, VK_OBJECT_TYPE_PIPELINE,
+                std::string("geometry pipeline ") + (fragment ? fragment : vertex) + " [" + key.text() + "]");
     return PipelineOwner(device.vk(), pipeline);
 }
 
@@ -136,23 +140,45 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     if (!rp) return rp.error();
     pass.renderPass_ = std::move(rp.value());
     // The vertex shader reads no specialization constant: one depth pipeline serves every key.
-    Result<PipelineOwner> depthOnly = createPipeline(device, layout, pass.renderPass_.get(), SpecKey{}, nullptr);
+    Result<PipelineOwner> depthOnly =
+        createPipeline(device, layout, pass.renderPass_.get(), SpecKey{}, "geometry.vert", nullptr, true);
     if (!depthOnly) return depthOnly.error();
     pass.depthPipeline_ = std::move(depthOnly.value());
-    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}, false));
+    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}, false, false));
     return pass;
 }
 
 Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key,
-                                       bool shapes) {
-    auto it = pipelines_.find({key, shapes});
-    if (it == pipelines_.end()) {
-        Result<PipelineOwner> pipeline =
-            createPipeline(device, layout, renderPass_.get(), key, shapes ? "geometry_shapes.frag" : "geometry.frag");
-        if (!pipeline) return pipeline.error();
-        it = pipelines_.emplace(std::pair{key, shapes}, std::move(pipeline.value())).first;
+                                       bool shapes, bool spheres) {
+    auto shading = [&](bool sphere) -> Result<VkPipeline> {
+        auto it = pipelines_.find({key, shapes, sphere});
+        if (it == pipelines_.end()) {
+            const char* fragment = sphere ? (shapes ? "geometry_sphere_shapes.frag" : "geometry_sphere.frag")
+                                          : (shapes ? "geometry_shapes.frag" : "geometry.frag");
+            Result<PipelineOwner> pipeline =
+                createPipeline(device, layout, renderPass_.get(), key, sphere ? "geometry_sphere.vert" : "geometry.vert",
+                               fragment, false);
+            if (!pipeline) return pipeline.error();
+            it = pipelines_.emplace(std::tuple{key, shapes, sphere}, std::move(pipeline.value())).first;
+        }
+        return it->second.get();
+    };
+    Result<VkPipeline> triangles = shading(false);
+    if (!triangles) return triangles.error();
+    pipeline_ = triangles.value();
+    spherePipeline_ = VK_NULL_HANDLE;
+    if (!spheres) return {};
+    if (!sphereDepthPipeline_) {
+        // The sphere's depth does not depend on the key: one depth pipeline serves every frame.
+        Result<PipelineOwner> depth = createPipeline(device, layout, renderPass_.get(), SpecKey{},
+                                                     "geometry_sphere_depth.vert", "geometry_sphere_depth.frag", true,
+                                                     /*attributes=*/2);
+        if (!depth) return depth.error();
+        sphereDepthPipeline_ = std::move(depth.value());
     }
-    pipeline_ = it->second.get();
+    Result<VkPipeline> sphere = shading(true);
+    if (!sphere) return sphere.error();
+    spherePipeline_ = sphere.value();
     return {};
 }
 
@@ -184,7 +210,7 @@ void GeometryPass::record(const PassContext& ctx) const {
     const VkCommandBuffer cmd = ctx.cmd;
     const FrameResources& r = *ctx.res;
     const DescriptorBindings& b = *ctx.bindings;
-    const uint32_t vertexCount = ctx.vertexCount;
+    const uint32_t triangles = ctx.triangleVertices, spheres = ctx.sphereVertices;
     const glm::vec3 ambient = ctx.ambient;
     const float cameraFar = ctx.cameraFar;
     const VkExtent2D extent{static_cast<uint32_t>(r.size.x), static_cast<uint32_t>(r.size.y)};
@@ -199,7 +225,7 @@ void GeometryPass::record(const PassContext& ctx) const {
     begin.clearValueCount = static_cast<uint32_t>(clears.size());
     begin.pClearValues = clears.data();
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    if (vertexCount > 0) {
+    if (triangles + spheres > 0) {
         // clipFromView already flips y for Vulkan's framebuffer, so the viewport is the plain one.
         const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
                                   0.0f, 1.0f};
@@ -212,11 +238,17 @@ void GeometryPass::record(const PassContext& ctx) const {
         const VkBuffer vb = r.vertices.buffer.get();
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         // Depth first, then shading where the depth is equal: each visible pixel is shaded once,
-        // whatever the draw order (the ground under the wall was shaded, then painted over).
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, depthPipeline_.get());
-        vkCmdDraw(cmd, vertexCount, 1, 0, 0);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        vkCmdDraw(cmd, vertexCount, 1, 0, 0);
+        // whatever the draw order (the ground under the wall was shaded, then painted over). The
+        // sphere proxies write their ray cast's depth in both, computed alike (geometry.frag).
+        auto draw = [&](VkPipeline pipeline, uint32_t count, uint32_t first) {
+            if (count == 0) return;
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+            vkCmdDraw(cmd, count, 1, first, 0);
+        };
+        draw(depthPipeline_.get(), triangles, 0);
+        draw(sphereDepthPipeline_.get(), spheres, triangles);
+        draw(pipeline_, triangles, 0);
+        draw(spherePipeline_, spheres, triangles);
     }
     vkCmdEndRenderPass(cmd);
 }

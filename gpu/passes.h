@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <tuple>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,7 +28,8 @@ struct PassContext {
     const std::vector<shd::GlowParams>* glow = nullptr;  // glow: one dispatch each
     glm::vec3 ambient{0.0f};    // geometry: sky radiance
     float cameraFar = 0.0f;     // geometry: sky view depth
-    uint32_t vertexCount = 0;   // geometry
+    uint32_t triangleVertices = 0;  // geometry: GeometryMesh::triangleVertices
+    uint32_t sphereVertices = 0;    // geometry: GeometryMesh::sphereVertices
 };
 
 // Binds ctx.pipeline and the set and dispatches ctx.pass's rule.
@@ -54,19 +56,23 @@ void recordClearMedia(const PassContext& ctx);
 class GeometryPass {
 public:
     static Result<GeometryPass> create(const Device& device, VkPipelineLayout layout);
-    // Selects (creating on first use) the pipeline specialized for key (pipeline.h SpecKey), with the
+    // Selects (creating on first use) the pipelines specialized for key (pipeline.h SpecKey), with the
     // fragment shader's variant with the sampled fog shadows of ellipsoids and cylinders or not
-    // (frame_table.h VariantKey::shapes).
-    Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes);
+    // (frame_table.h VariantKey::shapes); those of the sphere proxies too when `spheres`.
+    Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes,
+                             bool spheres);
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
     void record(const PassContext& ctx) const;
 
 private:
     RenderPassOwner renderPass_;
-    std::map<std::pair<SpecKey, bool>, PipelineOwner> pipelines_;  // by specialization key and shapes variant
-    VkPipeline pipeline_ = VK_NULL_HANDLE;                          // the one usePipeline chose
-    PipelineOwner depthPipeline_;  // the depth pre-pass: vertex shader only
+    // Shading pipelines by specialization key, shapes variant and sphere proxies or triangles.
+    std::map<std::tuple<SpecKey, bool, bool>, PipelineOwner> pipelines_;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;        // the triangles' one usePipeline chose
+    VkPipeline spherePipeline_ = VK_NULL_HANDLE;  // the sphere proxies' one (spheres only)
+    PipelineOwner depthPipeline_;        // the depth pre-pass of triangles: vertex shader only
+    PipelineOwner sphereDepthPipeline_;  // that of sphere proxies: the ray cast's depth (made on first use)
     GpuImage depthBuffer_;  // d32, depth test only
     FramebufferOwner framebuffer_;
 };

@@ -9,6 +9,7 @@
 #include "core/sun_shadow.h"
 #include "core/temporal.h"
 #include "frame_resources.h"
+#include "geometry_mesh.h"
 #include "gpu_renderer.h"
 #include "passes.h"
 #include "timing.h"
@@ -68,7 +69,7 @@ struct GpuRenderer::State {
     Result<void> chooseVariant(const CompiledScene& cs);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes);
-    Result<void> recordFrame(uint32_t vertexCount, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
+    Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     void recordReadback(bool readBackVolumes);
     Result<double> submitAndWait();

@@ -9,20 +9,40 @@
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
 #include "local_shadow.glsl"
+#ifdef BRUME_SPHERE
+#include "sphere_ray.glsl"
+#endif
 
+#ifdef BRUME_SPHERE
+// Built as geometry_sphere.frag: a sphere proxy's fragment (geometry_mesh.h), shaded where the ray
+// cast hits the sphere, at the depth the pre-pass wrote (geometry_sphere_depth.frag).
+layout(location = 0) flat in vec4 sphere;  // xyz centre [m], w radius [m]
+layout(location = 1) flat in vec3 albedo;
+layout(location = 2) flat in vec3 emission;
+#else
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec3 albedo;
 layout(location = 3) in vec3 emission;
 layout(location = 4) in float viewDepth;
+#endif
 
 layout(location = 0) out vec4 outRadiance;
 layout(location = 1) out float outViewDepth;
 
 void main() {
+#ifdef BRUME_SPHERE
+    SphereRayHit h = sphereRayHit(sphere.xyz, sphere.w);
+    if (!h.hit) discard;
+    gl_FragDepth = h.depth;
+    vec3 worldPos = h.position;
+    vec3 n = h.normal;
+    float viewDepth = h.viewDepth;
+#else
     vec3 n = normalize(worldNormal);
     // Two-sided like the CPU's ray queries: the normal faces the camera.
     if (dot(n, frame.cameraPosition.xyz - worldPos) < 0.0f) n = -n;
+#endif
     vec3 radiance = emission + albedo * frame.ambient.rgb;
     // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
     vec3 m = abs(worldPos);
