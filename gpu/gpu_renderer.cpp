@@ -290,11 +290,11 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
     // Voxelize and light run over the froxels that can hold media (core/media_region.h), rounded up
-    // to whole workgroups: only those froxels' clusters are read.
+    // to whole workgroups (the light pass's: runs along z): only those froxels' clusters are read.
     const FroxelRegion media = s_->froxelRegions ? mediaFroxelRegion(cs, frame) : FroxelRegion{glm::ivec3(0), dims};
     r.mediaOrigin = media.lo;
     r.mediaExtent = media.hi - media.lo;
-    const glm::ivec3 groupSize(shd::FROXEL_GROUP_X, shd::FROXEL_GROUP_Y, shd::FROXEL_GROUP_Z);
+    const glm::ivec3 groupSize(shd::LIGHT_GROUP_X, shd::LIGHT_GROUP_Y, shd::LIGHT_RUN);
     const FroxelRegion lightFroxels{media.lo,
                                     glm::min(media.lo + (r.mediaExtent + groupSize - 1) / groupSize * groupSize, dims)};
     const LightReach lightReach =
@@ -387,9 +387,9 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     }
     const auto* counters = static_cast<const shd::FroxelCounters*>(r[BufferId::counters].mapped);
     out.litFroxels = counters->litFroxels;
-    // The light pass skips the froxels outside the media region too: they hold no media.
-    const int64_t dispatched = lightFroxels.froxels();
-    out.skippedFroxels = counters->skippedFroxels + size_t(int64_t(dims.x) * dims.y * dims.z - dispatched);
+    // The light pass counts the froxels with sigma_t > 0; it skips the others, those outside the
+    // media region too (they hold no media).
+    out.skippedFroxels = size_t(int64_t(dims.x) * dims.y * dims.z) - out.litFroxels;
     out.overfullClusters = clusters.overfullClusters;
     out.allocated = s_->allocated;
     Result<std::vector<PassTiming>> timings = s_->timer.read();

@@ -11,7 +11,10 @@
 //     trusted is appended to exactList (its S written here is replaced by the second pass).
 //   light_exact.comp (indirect, one invocation per listed froxel): the whole sum again, with the
 //     exact fallback, in the same order, so S is what one pass computing both would write.
-// light.comp runs over the froxels that can hold media only (core/media_region.h), like voxelize.
+// light.comp runs over the froxels that can hold media only (core/media_region.h), like voxelize, one
+// invocation per run of LIGHT_RUN froxels along z (bindings.h): it counts its lit froxels and marks its
+// exact ones in registers, then adds them with one atomic each (the count, the exact list), where an
+// atomic per froxel cost ~17% of the pass on lavapipe (docs/performance.md, "light, fifth round").
 // Both are specialized (shared/specialization.h): the vdb layer, the sun shadow map and the point/spot
 // shadow maps are compiled out when the frame has none (SPEC_VDB_SHADOWS, SPEC_SUN_SHADOW_MAP,
 // SPEC_LOCAL_SHADOW_MAPS), where they would return 1. (They were #define variants before.)
@@ -26,7 +29,7 @@
 #ifdef BRUME_LIGHT_EXACT
 layout(local_size_x = LIGHT_EXACT_GROUP) in;
 #else
-layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+layout(local_size_x = LIGHT_GROUP_X, local_size_y = LIGHT_GROUP_Y, local_size_z = 1) in;
 #endif
 
 // The sun shadow map's visibility at p for the mapped sun (sun_shadow.glsl), looked up once per
@@ -70,35 +73,23 @@ vec3 trustedFogTransmittance(int light, ShadowLookup k, ShadowCorners c, out boo
     return b.transmittance * vdbShadowBlend(light, k);
 }
 
-// Appends froxel `id` to exactList; the invocation that opens a workgroup's worth of entries adds
-// that workgroup to the indirect dispatch.
-void appendExact(ivec3 id) {
-    uint slot = atomicAdd(exactList.count, 1u);
-    exactFroxels[slot] = uint(id.x + frame.froxelDims.x * (id.y + frame.froxelDims.y * id.z));
-    if (slot % uint(LIGHT_EXACT_GROUP) == 0u) atomicAdd(exactList.groupsX, 1u);
+// Appends the froxels of the run starting at `first` whose bit is set in `run` (bit k: first + k along
+// z) to exactList, with one atomic for the run's slots and one for the indirect dispatch's groups
+// (which only grows: the largest slot count any run reached, in groups of LIGHT_EXACT_GROUP).
+void appendExactRun(ivec3 first, uint run) {
+    uint n = uint(bitCount(run));
+    uint slot = atomicAdd(exactList.count, n);
+    atomicMax(exactList.groupsX, (slot + n + uint(LIGHT_EXACT_GROUP) - 1u) / uint(LIGHT_EXACT_GROUP));
+    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
+    uint linear = uint(first.x + frame.froxelDims.x * first.y) + uint(first.z) * plane;
+    for (; run != 0u; run &= run - 1u) exactFroxels[slot++] = linear + uint(findLSB(run)) * plane;
 }
 #endif
 
-void main() {
-#ifdef BRUME_LIGHT_EXACT
-    uint slot = gl_GlobalInvocationID.x;
-    if (slot >= exactList.count) return;
-    uint linear = exactFroxels[slot];
-    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
-    ivec3 id = ivec3(int(linear % uint(frame.froxelDims.x)), int((linear % plane) / uint(frame.froxelDims.x)),
-                     int(linear / plane));
-#else
-    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
-    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
-    vec3 sigmaT = imageLoad(mediaExtinction, id).rgb;
-    if (sigmaT == vec3(0.0f)) {
-        imageStore(sourceImage, id, vec4(imageLoad(mediaEmission, id).rgb, 0.0f));
-        atomicAdd(counters.skippedFroxels, 1u);
-        return;
-    }
-    atomicAdd(counters.litFroxels, 1u);
+// S at froxel id, which has media (sigma_t > 0). light.comp: returns whether some light's blend was
+// not trusted (the froxel then goes to light exact, which writes S again).
+bool lightFroxel(ivec3 id) {
     bool exact = false;
-#endif
     vec4 scatteringG = imageLoad(mediaScatteringG, id);
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
@@ -128,9 +119,39 @@ void main() {
         exact = exact || !trusted;
 #endif
     }
-#ifndef BRUME_LIGHT_EXACT
-    if (exact) appendExact(id);
-#endif
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));
+    return exact;
+}
+
+void main() {
+#ifdef BRUME_LIGHT_EXACT
+    uint slot = gl_GlobalInvocationID.x;
+    if (slot >= exactList.count) return;
+    uint linear = exactFroxels[slot];
+    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
+    ivec3 id = ivec3(int(linear % uint(frame.froxelDims.x)), int((linear % plane) / uint(frame.froxelDims.x)),
+                     int(linear / plane));
+    lightFroxel(id);
+#else
+    // The run's first froxel; the run is cut at the grid's end.
+    ivec3 first = ivec3(gl_GlobalInvocationID.xy, int(gl_GlobalInvocationID.z) * LIGHT_RUN) +
+                  ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
+    if (any(greaterThanEqual(first, frame.froxelDims.xyz))) return;
+    int last = min(first.z + LIGHT_RUN, frame.froxelDims.z) - 1;
+    uint lit = 0u;   // froxels of the run with sigma_t > 0
+    uint run = 0u;   // bit k: froxel first + k along z needs light exact
+    for (int z = first.z; z <= last; ++z) {
+        ivec3 id = ivec3(first.xy, z);
+        if (imageLoad(mediaExtinction, id).rgb == vec3(0.0f)) {
+            imageStore(sourceImage, id, vec4(imageLoad(mediaEmission, id).rgb, 0.0f));
+        } else {
+            ++lit;
+            if (lightFroxel(id)) run |= 1u << uint(z - first.z);
+        }
+    }
+    // The froxels with sigma_t = 0 are counted by the host: every other froxel of the grid.
+    if (lit != 0u) atomicAdd(counters.litFroxels, lit);
+    if (run != 0u) appendExactRun(first, run);
+#endif
 }
