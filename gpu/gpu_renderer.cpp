@@ -154,6 +154,7 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     const int distantKinds = (1 << shd::VOLUME_HEIGHT_EXPONENTIAL) | (1 << shd::VOLUME_HEIGHT_LINEAR) | (1 << shd::VOLUME_DEPTH);
     k[SpecId::SPEC_DISTANT_FOG] = (kinds & distantKinds) != 0 && frame.froxelRange.y < frame.projection.w ? 1 : 0;
     k[SpecId::SPEC_INFLUENCERS] = cs.influence.header.count.x > 0 ? 1 : 0;
+    k[SpecId::SPEC_SHADOW_REDUCTION] = frame.shadowReduction;
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;
         for (size_t i = 0; i < cs.volumes.size(); ++i)

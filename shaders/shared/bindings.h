@@ -30,6 +30,9 @@ BRUME_CONST int LIGHT_EXACT_GROUP = 64;
 // The light pass: one invocation per run of LIGHT_RUN froxels along z (at most 32: the run's exact
 // froxels are the bits of a uint), LIGHT_GROUP_X x LIGHT_GROUP_Y runs per workgroup.
 BRUME_CONST int LIGHT_RUN = 32;
+// Froxels along z that light_body.glsl lightBlock computes together (one cluster's light list, each
+// light's fetch and its transmittance cells shared); its 5 cell levels are written for 4.
+BRUME_CONST int LIGHT_BLOCK = 4;
 BRUME_CONST int LIGHT_GROUP_X = 8;
 BRUME_CONST int LIGHT_GROUP_Y = 8;
 
