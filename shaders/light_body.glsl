@@ -148,9 +148,9 @@ CellLevel pickLevel(int n, CellLevel l0, CellLevel l1, CellLevel l2, CellLevel l
 // cluster): S of those in [zLo, zHi] (the run), each froxel's as lightFroxel computes it where every
 // light's blend is trusted (the same arithmetic in the same order), with the cluster's light list,
 // each light's fetch and the transmittance volume's cells read once for the block: its froxels share
-// their cells' xy corners and, r at a time, their levels along z (4 + 8 fetches per light where 4
-// froxels read 32 at r = 2; shadow_volume.h shadowBlend's min, max and bilinear blend split by level,
-// the same operations on the same values).
+// their cells' xy corners and, r at a time, their levels along z (at r = 2: 3 levels of 4 cells, 12
+// fetches per light where 4 froxels read 32; shadow_volume.h shadowBlend's min, max and bilinear blend
+// split by level, the same operations on the same values).
 // lit: the run's froxels with sigma_t > 0 counted; returns the exact ones as bits (bit j: z0 + j).
 uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
     int r = lightShadowReduction();
