@@ -438,6 +438,10 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::FROXEL_GROUP_X), groups(r.mediaExtent.y, shd::FROXEL_GROUP_Y),
                           groups(r.mediaExtent.z, shd::FROXEL_GROUP_Z));
             break;
+        case Dispatch::MediaRuns:
+            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::LIGHT_GROUP_X), groups(r.mediaExtent.y, shd::LIGHT_GROUP_Y),
+                          groups(r.mediaExtent.z, shd::LIGHT_RUN));
+            break;
         case Dispatch::RegionFroxels: {
             const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
             vkCmdDispatch(ctx.cmd, groups(e.x, shd::FROXEL_GROUP_X), groups(e.y, shd::FROXEL_GROUP_Y),

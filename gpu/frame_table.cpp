@@ -38,7 +38,7 @@ const std::array<PassDecl, 11> kPasses{{
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
-    {"light", "light", Variant::Shapes, Dispatch::MediaFroxels, When::Always, Record::Dispatch,
+    {"light", "light", Variant::Shapes, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap,
       B::localShadowMaps, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}, true, true},

@@ -154,6 +154,7 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     const int distantKinds = (1 << shd::VOLUME_HEIGHT_EXPONENTIAL) | (1 << shd::VOLUME_HEIGHT_LINEAR) | (1 << shd::VOLUME_DEPTH);
     k[SpecId::SPEC_DISTANT_FOG] = (kinds & distantKinds) != 0 && frame.froxelRange.y < frame.projection.w ? 1 : 0;
     k[SpecId::SPEC_INFLUENCERS] = cs.influence.header.count.x > 0 ? 1 : 0;
+    k[SpecId::SPEC_SHADOW_REDUCTION] = frame.shadowReduction;
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;
         for (size_t i = 0; i < cs.volumes.size(); ++i)
@@ -290,11 +291,11 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
     // Voxelize and light run over the froxels that can hold media (core/media_region.h), rounded up
-    // to whole workgroups: only those froxels' clusters are read.
+    // to whole workgroups (the light pass's: runs along z): only those froxels' clusters are read.
     const FroxelRegion media = s_->froxelRegions ? mediaFroxelRegion(cs, frame) : FroxelRegion{glm::ivec3(0), dims};
     r.mediaOrigin = media.lo;
     r.mediaExtent = media.hi - media.lo;
-    const glm::ivec3 groupSize(shd::FROXEL_GROUP_X, shd::FROXEL_GROUP_Y, shd::FROXEL_GROUP_Z);
+    const glm::ivec3 groupSize(shd::LIGHT_GROUP_X, shd::LIGHT_GROUP_Y, shd::LIGHT_RUN);
     const FroxelRegion lightFroxels{media.lo,
                                     glm::min(media.lo + (r.mediaExtent + groupSize - 1) / groupSize * groupSize, dims)};
     const LightReach lightReach =
@@ -387,9 +388,9 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     }
     const auto* counters = static_cast<const shd::FroxelCounters*>(r[BufferId::counters].mapped);
     out.litFroxels = counters->litFroxels;
-    // The light pass skips the froxels outside the media region too: they hold no media.
-    const int64_t dispatched = lightFroxels.froxels();
-    out.skippedFroxels = counters->skippedFroxels + size_t(int64_t(dims.x) * dims.y * dims.z - dispatched);
+    // The light pass counts the froxels with sigma_t > 0; it skips the others, those outside the
+    // media region too (they hold no media).
+    out.skippedFroxels = size_t(int64_t(dims.x) * dims.y * dims.z) - out.litFroxels;
     out.overfullClusters = clusters.overfullClusters;
     out.allocated = s_->allocated;
     Result<std::vector<PassTiming>> timings = s_->timer.read();

@@ -11,7 +11,14 @@
 //     trusted is appended to exactList (its S written here is replaced by the second pass).
 //   light_exact.comp (indirect, one invocation per listed froxel): the whole sum again, with the
 //     exact fallback, in the same order, so S is what one pass computing both would write.
-// light.comp runs over the froxels that can hold media only (core/media_region.h), like voxelize.
+// light.comp runs over the froxels that can hold media only (core/media_region.h), like voxelize, one
+// invocation per run of LIGHT_RUN froxels along z (bindings.h): it counts its lit froxels and marks its
+// exact ones in registers, then adds them with one atomic each (the count, the exact list), where an
+// atomic per froxel cost ~17% of the pass on lavapipe (docs/performance.md, "light, fifth round").
+// It walks its run in blocks of LIGHT_BLOCK froxels that share their cluster's light list, each
+// light's fetch and the transmittance volume's cells (lightBlock); light_exact.comp computes one
+// froxel at a time (lightFroxel). Both compute each froxel's S with the same arithmetic in the same
+// order.
 // Both are specialized (shared/specialization.h): the vdb layer, the sun shadow map and the point/spot
 // shadow maps are compiled out when the frame has none (SPEC_VDB_SHADOWS, SPEC_SUN_SHADOW_MAP,
 // SPEC_LOCAL_SHADOW_MAPS), where they would return 1. (They were #define variants before.)
@@ -26,7 +33,7 @@
 #ifdef BRUME_LIGHT_EXACT
 layout(local_size_x = LIGHT_EXACT_GROUP) in;
 #else
-layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
+layout(local_size_x = LIGHT_GROUP_X, local_size_y = LIGHT_GROUP_Y, local_size_z = 1) in;
 #endif
 
 // The sun shadow map's visibility at p for the mapped sun (sun_shadow.glsl), looked up once per
@@ -59,46 +66,10 @@ vec3 exactFogTransmittance(int light, ShadowLookup k, ShadowCorners c, vec3 p, v
     if (b.trusted) return b.transmittance * vdb;
     return lightFogTransmittance(lightAt(light), p, toLight, distance) * vdb;
 }
-#else
-// The trusted blend of light `light`'s fog transmittance at k (fog_shadow.glsl
-// froxelFogTransmittance without its exact fallback); trusted = false where that fallback is needed.
-vec3 trustedFogTransmittance(int light, ShadowLookup k, ShadowCorners c, out bool trusted) {
-    trusted = true;
-    if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
-    ShadowBlend b = blendShadowCorners(light, c, k.weights);
-    trusted = b.trusted;
-    return b.transmittance * vdbShadowBlend(light, k);
-}
 
-// Appends froxel `id` to exactList; the invocation that opens a workgroup's worth of entries adds
-// that workgroup to the indirect dispatch.
-void appendExact(ivec3 id) {
-    uint slot = atomicAdd(exactList.count, 1u);
-    exactFroxels[slot] = uint(id.x + frame.froxelDims.x * (id.y + frame.froxelDims.y * id.z));
-    if (slot % uint(LIGHT_EXACT_GROUP) == 0u) atomicAdd(exactList.groupsX, 1u);
-}
-#endif
-
-void main() {
-#ifdef BRUME_LIGHT_EXACT
-    uint slot = gl_GlobalInvocationID.x;
-    if (slot >= exactList.count) return;
-    uint linear = exactFroxels[slot];
-    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
-    ivec3 id = ivec3(int(linear % uint(frame.froxelDims.x)), int((linear % plane) / uint(frame.froxelDims.x)),
-                     int(linear / plane));
-#else
-    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
-    if (any(greaterThanEqual(id, frame.froxelDims.xyz))) return;
-    vec3 sigmaT = imageLoad(mediaExtinction, id).rgb;
-    if (sigmaT == vec3(0.0f)) {
-        imageStore(sourceImage, id, vec4(imageLoad(mediaEmission, id).rgb, 0.0f));
-        atomicAdd(counters.skippedFroxels, 1u);
-        return;
-    }
-    atomicAdd(counters.litFroxels, 1u);
-    bool exact = false;
-#endif
+// S at froxel id, which light.comp listed (so sigma_t > 0 there): each light's trusted blend as
+// light.comp computed it, the exact closed form where the blend is not trusted.
+void lightFroxel(ivec3 id) {
     vec4 scatteringG = imageLoad(mediaScatteringG, id);
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
@@ -119,18 +90,178 @@ void main() {
         vec3 inScatter = inScatterPerSigmaS(l, ls, viewDir, phase);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
-#ifdef BRUME_LIGHT_EXACT
         perSigmaS += inScatter * exactFogTransmittance(i, shadow, corners, p, ls.toLight, ls.distance) *
                      lightMapVisibility(i, p, sun);
-#else
-        bool trusted;
-        perSigmaS += inScatter * trustedFogTransmittance(i, shadow, corners, trusted) * lightMapVisibility(i, p, sun);
-        exact = exact || !trusted;
-#endif
     }
-#ifndef BRUME_LIGHT_EXACT
-    if (exact) appendExact(id);
-#endif
     vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
     imageStore(sourceImage, id, vec4(source, 0.0f));
+}
+#else
+// Appends the froxels of the run starting at `first` whose bit is set in `run` (bit k: first + k along
+// z) to exactList, with one atomic for the run's slots and one for the indirect dispatch's groups
+// (which only grows: the largest slot count any run reached, in groups of LIGHT_EXACT_GROUP).
+void appendExactRun(ivec3 first, uint run) {
+    uint n = uint(bitCount(run));
+    uint slot = atomicAdd(exactList.count, n);
+    atomicMax(exactList.groupsX, (slot + n + uint(LIGHT_EXACT_GROUP) - 1u) / uint(LIGHT_EXACT_GROUP));
+    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
+    uint linear = uint(first.x + frame.froxelDims.x * first.y) + uint(first.z) * plane;
+    for (; run != 0u; run &= run - 1u) exactFroxels[slot++] = linear + uint(findLSB(run)) * plane;
+}
+
+// The transmittance volume's reduction r: the pipeline's constant, or the frame's where the pipeline
+// is not specialized.
+int lightShadowReduction() { return SPEC_SHADOW_REDUCTION > 0 ? SPEC_SHADOW_REDUCTION : frame.shadowReduction; }
+
+// Which of a block's cell levels (lightBlock) slot j's lower corner lies on: (z0 + j) / r - z0 / r, a
+// constant where the pipeline is specialized with r = 1, 2 or a multiple of 4.
+int blockLevel(int z0, int j, int r) {
+    if (SPEC_SHADOW_REDUCTION == 1) return j;
+    if (SPEC_SHADOW_REDUCTION > 0 && SPEC_SHADOW_REDUCTION % LIGHT_BLOCK == 0) return 0;
+    if (SPEC_SHADOW_REDUCTION == 2) return j / 2;
+    return (z0 + j) / r - z0 / r;
+}
+
+// One level of a light's 8 cells along z: the 4 cells' bilinear blend and their min and max
+// (fog_shadow.glsl blendShadowCorners / shadow_volume.h shadowBlend, split by level).
+struct CellLevel {
+    vec3 blend;
+    vec3 lo;
+    vec3 hi;
+};
+
+CellLevel cellLevel(int base, ivec4 xy, vec2 w) {
+    vec3 c00 = shadowEntry(base + xy.x), c01 = shadowEntry(base + xy.y), c10 = shadowEntry(base + xy.z),
+         c11 = shadowEntry(base + xy.w);
+    CellLevel l;
+    l.blend = mix(mix(c00, c01, w.x), mix(c10, c11, w.x), w.y);
+    l.lo = min(min(c00, c01), min(c10, c11));
+    l.hi = max(max(c00, c01), max(c10, c11));
+    return l;
+}
+
+CellLevel pickLevel(int n, CellLevel l0, CellLevel l1, CellLevel l2, CellLevel l3, CellLevel l4) {
+    return n == 0 ? l0 : (n == 1 ? l1 : (n == 2 ? l2 : (n == 3 ? l3 : l4)));
+}
+
+// Froxels z0 .. z0 + LIGHT_BLOCK - 1 of column xy (z0 a multiple of LIGHT_BLOCK = 4, so inside one
+// cluster): S of those in [zLo, zHi] (the run), each froxel's as lightFroxel computes it where every
+// light's blend is trusted (the same arithmetic in the same order), with the cluster's light list,
+// each light's fetch and the transmittance volume's cells read once for the block: its froxels share
+// their cells' xy corners and, r at a time, their levels along z (at r = 2: 3 levels of 4 cells, 12
+// fetches per light where 4 froxels read 32; shadow_volume.h shadowBlend's min, max and bilinear blend
+// split by level, the same operations on the same values).
+// lit: the run's froxels with sigma_t > 0 counted; returns the exact ones as bits (bit j: z0 + j).
+uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
+    int r = lightShadowReduction();
+    ivec3 dims = frame.froxelDims.xyz;
+    bool valid[LIGHT_BLOCK];
+    bool media[LIGHT_BLOCK];
+    vec4 scatteringG[LIGHT_BLOCK];
+    vec3 emission[LIGHT_BLOCK];
+    vec3 p[LIGHT_BLOCK];
+    vec3 viewDir[LIGHT_BLOCK];
+    vec3 perSigmaS[LIGHT_BLOCK];
+    float nearest[LIGHT_BLOCK];
+    HgPhaseTerms phase[LIGHT_BLOCK];
+    float sun[LIGHT_BLOCK];
+    ShadowLookup shadow[LIGHT_BLOCK];
+    int level[LIGHT_BLOCK];
+    bool exact[LIGHT_BLOCK];
+    [[unroll]] for (int j = 0; j < LIGHT_BLOCK; ++j) {
+        ivec3 id = ivec3(xy, min(z0 + j, dims.z - 1));
+        valid[j] = z0 + j >= zLo && z0 + j <= zHi;
+        media[j] = imageLoad(mediaExtinction, id).rgb != vec3(0.0f);
+        scatteringG[j] = imageLoad(mediaScatteringG, id);
+        emission[j] = imageLoad(mediaEmission, id).rgb;
+        p[j] = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
+        viewDir[j] = normalize(p[j] - frame.cameraPosition.xyz);
+        perSigmaS[j] = frame.ambient.rgb;
+        nearest[j] = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
+        phase[j] = hgPhaseTerms(scatteringG[j].a);
+        sun[j] = lightSunVisibility(p[j]);
+        shadow[j] = shadowLookup(id, dims, r);
+        level[j] = blockLevel(z0, j, r);
+        exact[j] = false;
+    }
+    // The cells' offsets inside a light's layer: the xy corners, and the block's levels along z.
+    // (The same entries as shadowCorners: c<z><y><x> = light * layer + level(z) + xyCorners(y, x).)
+    ShadowLookup s0 = shadow[0];
+    int plane = s0.cells.y * s0.cells.x;
+    ivec2 rows = ivec2(s0.cell.y, s0.upper.y) * s0.cells.x;
+    ivec4 xyCorners = ivec4(rows.x + s0.cell.x, rows.x + s0.upper.x, rows.y + s0.cell.x, rows.y + s0.upper.x);
+    // Level n is cell z = min(slot 0's + n, the last): slot j's lower corner is on level blockLevel(j),
+    // its upper one on the next (shadowLookup's upper, clamped the same way). 5 levels: at r = 1 each
+    // of the 4 froxels has its own, and the last one's upper; at r >= 2 fewer are read (the others
+    // are dead code once r is a constant).
+    ivec4 lowerLevels = min(ivec4(s0.cell.z) + ivec4(0, 1, 2, 3), ivec4(s0.cells.z - 1)) * plane;
+    int topLevel = min(s0.cell.z + 4, s0.cells.z - 1) * plane;
+    int layer = s0.cells.z * plane;
+    vec2 wxy = s0.weights.xy;
+    int record = clusterRecord(ivec3(xy, z0), dims);
+    bool all = clusterInt(record) == CLUSTER_ALL_LIGHTS;
+    int count = all ? frame.counts.w : clusterInt(record);
+    for (int k = 0; k < count; ++k) {
+        int i = all ? k : clusterInt(record + 1 + k);
+        LightData l = lightAt(i);
+        bool shadows = fogShadowsLight(l, localFogShadowsFlag());
+        int base = i * layer;
+        CellLevel l0 = cellLevel(base + lowerLevels.x, xyCorners, wxy);
+        CellLevel l1 = cellLevel(base + lowerLevels.y, xyCorners, wxy);
+        CellLevel l2 = cellLevel(base + lowerLevels.z, xyCorners, wxy);
+        CellLevel l3 = cellLevel(base + lowerLevels.w, xyCorners, wxy);
+        CellLevel l4 = cellLevel(base + topLevel, xyCorners, wxy);
+        [[unroll]] for (int j = 0; j < LIGHT_BLOCK; ++j) {
+            LightSample ls = lightFroxelSample(l, p[j], nearest[j]);
+            vec3 inScatter = inScatterPerSigmaS(l, ls, viewDir[j], phase[j]);
+            // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
+            if (inScatter == vec3(0.0f)) continue;
+            CellLevel lower = pickLevel(level[j], l0, l1, l2, l3, l4);
+            CellLevel upper = pickLevel(level[j] + 1, l0, l1, l2, l3, l4);
+            vec3 spread = max(lower.hi, upper.hi) - min(lower.lo, upper.lo);
+            bool trusted = !shadows || max(spread.x, max(spread.y, spread.z)) <= SHADOW_VOLUME_SPREAD;
+            vec3 transmittance = shadows ? mix(lower.blend, upper.blend, shadow[j].weights.z) * vdbShadowBlend(i, shadow[j])
+                                         : vec3(1.0f);
+            perSigmaS[j] += inScatter * transmittance * lightMapVisibility(i, p[j], sun[j]);
+            exact[j] = exact[j] || !trusted;
+        }
+    }
+    uint bits = 0u;
+    [[unroll]] for (int j = 0; j < LIGHT_BLOCK; ++j) {
+        if (!valid[j]) continue;
+        ivec3 id = ivec3(xy, z0 + j);
+        vec3 source = media[j] ? scatteringG[j].rgb * perSigmaS[j] + emission[j] : emission[j];
+        imageStore(sourceImage, id, vec4(source, 0.0f));
+        if (media[j]) ++lit;
+        if (media[j] && exact[j]) bits |= 1u << uint(j);
+    }
+    return bits;
+}
+#endif
+
+void main() {
+#ifdef BRUME_LIGHT_EXACT
+    uint slot = gl_GlobalInvocationID.x;
+    if (slot >= exactList.count) return;
+    uint linear = exactFroxels[slot];
+    uint plane = uint(frame.froxelDims.x * frame.froxelDims.y);
+    ivec3 id = ivec3(int(linear % uint(frame.froxelDims.x)), int((linear % plane) / uint(frame.froxelDims.x)),
+                     int(linear / plane));
+    lightFroxel(id);
+#else
+    // The run's first froxel; the run is cut at the grid's end.
+    ivec3 first = ivec3(gl_GlobalInvocationID.xy, int(gl_GlobalInvocationID.z) * LIGHT_RUN) +
+                  ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
+    if (any(greaterThanEqual(first, frame.froxelDims.xyz))) return;
+    int last = min(first.z + LIGHT_RUN, frame.froxelDims.z) - 1;
+    uint lit = 0u;   // froxels of the run with sigma_t > 0
+    uint run = 0u;   // bit k: froxel first + k along z needs light exact
+    for (int z0 = first.z - first.z % LIGHT_BLOCK; z0 <= last; z0 += LIGHT_BLOCK) {
+        uint bits = lightBlock(first.xy, z0, first.z, last, lit);
+        run |= z0 >= first.z ? bits << uint(z0 - first.z) : bits >> uint(first.z - z0);
+    }
+    // The froxels with sigma_t = 0 are counted by the host: every other froxel of the grid.
+    if (lit != 0u) atomicAdd(counters.litFroxels, lit);
+    if (run != 0u) appendExactRun(first, run);
+#endif
 }

@@ -7,12 +7,13 @@
 
 BRUME_NAMESPACE_BEGIN
 
-// Written by the light pass with atomics; 16 bytes in std430.
+// Written by the light pass with atomics (one per run of froxels); 16 bytes in std430. The froxels
+// with sigma_t = 0 (lighting skipped) are the grid's others: the host counts them.
 struct FroxelCounters {
-    uint litFroxels;      // froxels with sigma_t > 0
-    uint skippedFroxels;  // froxels with sigma_t = 0 (lighting skipped)
+    uint litFroxels;  // froxels with sigma_t > 0
     uint pad0;
     uint pad1;
+    uint pad2;
 };
 
 // The light pass's list of froxels that need the exact fog transmittance (light_body.glsl): this
@@ -26,6 +27,14 @@ struct ExactListHeader {
 };
 // Invocations per workgroup of the exact light pass (one per listed froxel).
 BRUME_CONST int LIGHT_EXACT_GROUP = 64;
+// The light pass: one invocation per run of LIGHT_RUN froxels along z (at most 32: the run's exact
+// froxels are the bits of a uint), LIGHT_GROUP_X x LIGHT_GROUP_Y runs per workgroup.
+BRUME_CONST int LIGHT_RUN = 32;
+// Froxels along z that light_body.glsl lightBlock computes together (one cluster's light list, each
+// light's fetch and its transmittance cells shared); its 5 cell levels are written for 4.
+BRUME_CONST int LIGHT_BLOCK = 4;
+BRUME_CONST int LIGHT_GROUP_X = 8;
+BRUME_CONST int LIGHT_GROUP_Y = 8;
 
 // The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis
 // (core/media_region.h temporalFroxelRegion; w unused). The rest of the grid is known without them:
