@@ -354,10 +354,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
 }
 
 // Outside the media region the voxelize and light passes would write 0 (core/media_region.h): when
-// the region is not the whole grid, clear what they write, then dispatch over the region.
+// the region is not the whole grid, clear what they write, then dispatch over the region. When no
+// volume emits, voxelize leaves mediaEmission's store out (SPEC_EMISSION) and it is cleared here.
 void recordClearMedia(const PassContext& ctx) {
     const FrameResources& r = *ctx.res;
-    if (r.mediaOrigin != glm::ivec3(0) || r.mediaExtent != r.froxelDims) {
+    const bool partial = r.mediaOrigin != glm::ivec3(0) || r.mediaExtent != r.froxelDims;
+    if (partial || !r.mediaEmits) {
         const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
         const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
         // After the frame's layout transitions and last frame's readers (compute and copies).
@@ -366,7 +368,7 @@ void recordClearMedia(const PassContext& ctx) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         for (ResRef w : ctx.pass->writes)
-            if (w.kind == ResRef::Kind::Image)
+            if (w.kind == ResRef::Kind::Image && (partial || w == ResRef(ImageId::mediaEmission)))
                 vkCmdClearColorImage(ctx.cmd, r.image(w, ctx.historyWriteIndex).image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
                                      1, &all);
         memoryBarrier(ctx.cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, compute,
