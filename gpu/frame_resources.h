@@ -3,7 +3,7 @@
 //
 //   frame (uniform) ---------------------------------------------------------> every pass
 //   volumes, lights (storage) -> voxelize -> media* -> light -> sourceImage -> integrate -> integrated*
-//   previousFrame, history in -> temporal (after light) -> history out -> sourceImage, mediaExtinction
+//   previousFrame, history in -> temporal or integrate_rest -> history out (resolved S, sigma_t) -> integrate, glow
 //   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> outputImage
 //
 // Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes and 4 history volumes (temporal

@@ -41,7 +41,8 @@ void main() {
         imageStore(historyExtinctionOut, id, extinction);
         acc = accumulateSlab(acc, source.rgb, extinction.rgb, d);
 #else
-        acc = accumulateSlab(acc, imageLoad(sourceImage, id).rgb, imageLoad(mediaExtinction, id).rgb, d);
+        // In motion the temporal pass wrote the resolved S and sigma_t to the history's *_OUT side.
+        acc = accumulateSlab(acc, imageLoad(historySourceOut, id).rgb, imageLoad(historyExtinctionOut, id).rgb, d);
 #endif
         imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
         imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
