@@ -354,10 +354,12 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
 }
 
 // Outside the media region the voxelize and light passes would write 0 (core/media_region.h): when
-// the region is not the whole grid, clear what they write, then dispatch over the region.
+// the region is not the whole grid, clear what they write, then dispatch over the region. When no
+// volume emits, voxelize leaves mediaEmission's store out (SPEC_EMISSION) and it is cleared here.
 void recordClearMedia(const PassContext& ctx) {
     const FrameResources& r = *ctx.res;
-    if (r.mediaOrigin != glm::ivec3(0) || r.mediaExtent != r.froxelDims) {
+    const bool partial = r.mediaOrigin != glm::ivec3(0) || r.mediaExtent != r.froxelDims;
+    if (partial || !r.mediaEmits) {
         const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
         const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
         // After the frame's layout transitions and last frame's readers (compute and copies).
@@ -366,7 +368,7 @@ void recordClearMedia(const PassContext& ctx) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         for (ResRef w : ctx.pass->writes)
-            if (w.kind == ResRef::Kind::Image)
+            if (w.kind == ResRef::Kind::Image && (partial || w == ResRef(ImageId::mediaEmission)))
                 vkCmdClearColorImage(ctx.cmd, r.image(w, ctx.historyWriteIndex).image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
                                      1, &all);
         memoryBarrier(ctx.cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, compute,
@@ -557,13 +559,13 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         for (ResRef r : p.writes) hazards.wrote(r, stages);
         timer.end(cmd);
     }
-    recordReadback(readBackVolumes);
+    recordReadback(readBackVolumes, historyWriteIndex);
     return {};
 }
 
-void GpuRenderer::State::recordReadback(bool readBackVolumes) {
+void GpuRenderer::State::recordReadback(bool readBackVolumes, int historyWriteIndex) {
     timer.begin(cmd, "readback");
-    std::vector<VkImage> sources;
+    std::vector<VkImage> sources, kept;
     std::vector<std::pair<const GpuImage*, const Buffer*>> copies;
     size_t k = 0;
     for (const ImageDecl& d : kImages) {
@@ -572,13 +574,21 @@ void GpuRenderer::State::recordReadback(bool readBackVolumes) {
         if ((d.flags & image_flags::READBACK) && readBackVolumes) dst = &res.volumeReadback[k];
         if (d.flags & image_flags::READBACK) ++k;
         if (!dst) continue;
-        sources.push_back(res[d.id].image.get());
-        copies.push_back({&res[d.id], dst});
+        // The resolved S and sigma_t are the history's output (integrate.comp); the history outlives
+        // the frame, so it goes back to GENERAL after the copy.
+        const GpuImage* src = &res[d.id];
+        if (d.id == ImageId::sourceImage) src = &res.image(historyOut(HistoryId::historySource), historyWriteIndex);
+        if (d.id == ImageId::mediaExtinction) src = &res.image(historyOut(HistoryId::historyExtinction), historyWriteIndex);
+        sources.push_back(src->image.get());
+        if (src != &res[d.id]) kept.push_back(src->image.get());
+        copies.push_back({src, dst});
     }
     transition(cmd, sources, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                VK_ACCESS_TRANSFER_READ_BIT);
     for (const auto& [img, buf] : copies) copyImageToBuffer(cmd, *img, *buf);
+    transition(cmd, kept, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     // Counters (light pass) and copies, to the host.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,

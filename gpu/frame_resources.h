@@ -3,7 +3,7 @@
 //
 //   frame (uniform) ---------------------------------------------------------> every pass
 //   volumes, lights (storage) -> voxelize -> media* -> light -> sourceImage -> integrate -> integrated*
-//   previousFrame, history in -> temporal (after light) -> history out -> sourceImage, mediaExtinction
+//   previousFrame, history in -> temporal or integrate_rest -> history out (resolved S, sigma_t) -> integrate, glow
 //   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> outputImage
 //
 // Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes and 4 history volumes (temporal
@@ -57,6 +57,9 @@ struct FrameResources {
     // the media and source images is cleared to 0 when it is not the whole grid.
     glm::ivec3 mediaOrigin{0};
     glm::ivec3 mediaExtent{0};
+    // Whether some volume emits (SPEC_EMISSION): if not, voxelize does not store mediaEmission and the
+    // frame clears it to 0 instead (frame_executor.cpp recordClearMedia).
+    bool mediaEmits = true;
     // The froxels the temporal and integrate passes compute (core/media_region.h temporalFroxelRegion).
     FroxelRegion temporalRegion;
     // Per history side: the froxels that may hold non-zero values (the last region written there; the

@@ -48,19 +48,20 @@ const std::array<PassDecl, 11> kPasses{{
       B::localShadowMaps, I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
-    // (core/media_region.h), then copied back over sourceImage and mediaExtinction for the integrate
-    // pass. At rest it only clears stale history: integrate_rest resolves each froxel itself.
+    // (core/media_region.h) into the history's output, which the later passes read. At rest it only
+    // clears stale history: integrate_rest resolves each froxel itself.
     {"temporal", "temporal", Variant::None, Dispatch::RegionFroxels, When::Always, Record::TemporalCopy,
      {B::frame, B::previousFrame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource),
       historyIn(H::historyExtinction)},
-     {historyOut(H::historySource), historyOut(H::historyExtinction), I::sourceImage, I::mediaExtinction}},
+     {historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // Front to back along each froxel column (closed-form slabs), over the temporal region's columns.
     // At rest (_rest) it first resolves each froxel with its own history, writing the history's output
-    // and sourceImage and mediaExtinction as the temporal pass would have.
+    // as the temporal pass would have. The resolved S and sigma_t are read from the history's output
+    // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
     {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
-     {B::frame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource), historyIn(H::historyExtinction)},
-     {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction),
-      I::sourceImage, I::mediaExtinction}},
+     {B::frame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
+      historyOut(H::historySource), historyOut(H::historyExtinction)},
+     {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
     // the composite interpolates it.
@@ -74,12 +75,12 @@ const std::array<PassDecl, 11> kPasses{{
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
     // added to the output over each glowing light's screen rectangle only.
     {"glow", "glow", Variant::None, Dispatch::GlowRects, When::Always, Record::Glow,
-     {B::frame, B::lights, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG, I::mediaExtinction,
-      I::outputImage},
+     {B::frame, B::lights, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG,
+      historyOut(H::historyExtinction), I::outputImage},
      {I::outputImage}},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,
-     {B::frame, I::mediaExtinction, I::sourceImage, I::integratedTransmittance},
+     {B::frame, historyOut(H::historyExtinction), historyOut(H::historySource), I::integratedTransmittance},
      {I::outputImage}},
 }};
 // clang-format on

@@ -155,6 +155,9 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     k[SpecId::SPEC_DISTANT_FOG] = (kinds & distantKinds) != 0 && frame.froxelRange.y < frame.projection.w ? 1 : 0;
     k[SpecId::SPEC_INFLUENCERS] = cs.influence.header.count.x > 0 ? 1 : 0;
     k[SpecId::SPEC_SHADOW_REDUCTION] = frame.shadowReduction;
+    bool emits = false;  // influencers scale emission, never create it (shared/influence.h)
+    for (const shd::VolumeData& v : cs.volumes) emits = emits || glm::vec3(v.emission) != glm::vec3(0.0f);
+    k[SpecId::SPEC_EMISSION] = emits ? 1 : 0;
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;
         for (size_t i = 0; i < cs.volumes.size(); ++i)
@@ -302,6 +305,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!mesh.vertices.empty(), &lightFroxels);
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->spec = sceneSpecKey(cs, frame, lightReach);
+    r.mediaEmits = s_->spec[SpecId::SPEC_EMISSION] != 0;
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
     s_->froxelSpec = culledSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
     s_->surfaceSpec = culledSpecKey(s_->spec, surfaceVolumesInReach(cs, frame));

@@ -78,9 +78,8 @@ private:
 };
 
 // Temporal (Record::TemporalCopy): the history side it writes cleared to 0 when it may hold values
-// outside this frame's temporal region (FrameResources::clearHistoryOut), the dispatch over the
-// region, then, in motion, the history's output copied over sourceImage and mediaExtinction in the
-// region (the dispatch reads their neighbours, so it cannot write them; the _rest variant does).
+// outside this frame's temporal region (FrameResources::clearHistoryOut), then, in motion, the
+// dispatch over the region. The later passes read the resolved values from the history's output.
 void recordTemporal(const PassContext& ctx);
 
 // Integrate (Record::Integrate): when the temporal region is not the whole grid, the integrated

@@ -71,7 +71,9 @@ struct GpuRenderer::State {
                          int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes);
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
-    void recordReadback(bool readBackVolumes);
+    // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage
+    // and mediaExtinction).
+    void recordReadback(bool readBackVolumes, int historyWriteIndex);
     Result<double> submitAndWait();
 };
 

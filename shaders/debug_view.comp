@@ -11,8 +11,9 @@ layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_
 layout(push_constant) uniform DebugBlock { DebugViewParams debugParams; };
 
 vec4 debugTexel(ivec3 froxel, int view) {
-    if (view == DEBUG_VIEW_DENSITY) return imageLoad(mediaExtinction, froxel);
-    if (view == DEBUG_VIEW_SCATTERING) return imageLoad(sourceImage, froxel);
+    // The resolved sigma_t and S: the history's *_OUT side (integrate.comp).
+    if (view == DEBUG_VIEW_DENSITY) return imageLoad(historyExtinctionOut, froxel);
+    if (view == DEBUG_VIEW_SCATTERING) return imageLoad(historySourceOut, froxel);
     return imageLoad(integratedTransmittance, froxel);
 }
 

@@ -3,9 +3,10 @@
 // Built with BRUME_TEMPORAL_REST (integrate_rest.comp) for frames whose view rests or that have no
 // history: the temporal pass then dispatches nothing, and this pass resolves each froxel with its own
 // history first (shared/temporal.h resolveTemporalAtRest, as the temporal pass in motion would not:
-// it reads neighbours), writes the result to the history's *_OUT side and over sourceImage and
-// mediaExtinction (their later readers: glow, debug view, readback), and integrates it. One pass over
-// the froxels instead of two (docs/performance.md, "voxel").
+// it reads neighbours), writes the result to the history's *_OUT side, and integrates it. One pass over
+// the froxels instead of two (docs/performance.md, "voxel"). The later readers of the resolved S and
+// sigma_t (glow, debug view, readback) read the *_OUT side, which holds them in motion too, so the
+// result is not stored over sourceImage and mediaExtinction as well (docs/performance.md, "media").
 // Dispatched over the columns of the temporal region only (region.lo.xy + invocation; core/
 // media_region.h temporalFroxelRegion): S and sigma_t are 0 outside it, so the frame clears the
 // integrated volumes to scattering 0 and transmittance 1 first (in front of the region and in the
@@ -38,11 +39,10 @@ void main() {
             resolveTemporalAtRest(imageLoad(mediaExtinction, id), imageLoad(historyExtinctionIn, id), frame.temporal.x);
         imageStore(historySourceOut, id, source);
         imageStore(historyExtinctionOut, id, extinction);
-        imageStore(sourceImage, id, source);
-        imageStore(mediaExtinction, id, extinction);
         acc = accumulateSlab(acc, source.rgb, extinction.rgb, d);
 #else
-        acc = accumulateSlab(acc, imageLoad(sourceImage, id).rgb, imageLoad(mediaExtinction, id).rgb, d);
+        // In motion the temporal pass wrote the resolved S and sigma_t to the history's *_OUT side.
+        acc = accumulateSlab(acc, imageLoad(historySourceOut, id).rgb, imageLoad(historyExtinctionOut, id).rgb, d);
 #endif
         imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
         imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));

@@ -3,8 +3,8 @@
 // shared/temporal.h. Dispatched over the temporal region only (region.lo + invocation; core/
 // media_region.h temporalFroxelRegion): outside it S and sigma_t are 0 and the history was cleared.
 // In motion the history is reprojected, clamped to the current neighbourhood and checked for NaN/Inf;
-// the result goes to the history pair's *_OUT images, then is copied over sourceImage and
-// mediaExtinction for the integrate pass (this pass reads their neighbours, so it cannot write them).
+// the result goes to the history pair's *_OUT images, where integrate, glow, debug view and readback
+// read it (this pass reads sourceImage's and mediaExtinction's neighbours, so it cannot write them).
 // Frames whose view rests or that have no history dispatch nothing here: integrate_rest.comp resolves
 // each froxel with its own history as it integrates (integrate.comp).
 #version 450

@@ -3,7 +3,7 @@
 // makes the whole shader ~9x slower on lavapipe (1031 vs 115 ms at 1280x720 high) even when no volume
 // takes that branch: scenes without vdb volumes (density textures) run a variant without that branch.
 // Dispatched over the froxels that can hold media only (core/media_region.h: frame.mediaOrigin*); the
-// frame clears the rest of the grid.
+// frame clears the rest of the grid, and all of mediaEmission when no volume emits (SPEC_EMISSION).
 #include "influence.glsl"
 
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
@@ -53,5 +53,7 @@ void main() {
     if (SPEC_INFLUENCERS != 0) m = influencedMedia(m, p);
     imageStore(mediaScatteringG, id, vec4(m.sigmaS, mediaPhaseG(m)));
     imageStore(mediaExtinction, id, vec4(m.sigmaT, 0.0f));
-    imageStore(mediaEmission, id, vec4(m.emission, 0.0f));
+    // No volume emits (SPEC_EMISSION 0): the frame clears mediaEmission instead (frame_executor.cpp
+    // recordClearMedia), a memset where this store runs lane by lane (docs/performance.md, "media").
+    if (SPEC_EMISSION != 0) imageStore(mediaEmission, id, vec4(m.emission, 0.0f));
 }

@@ -346,6 +346,32 @@ TEST_F(GpuTest, EmissiveOnlyMediumAndShadowFlagsMatchCpu) {
     expectMatchesCpu(s, "emissive only + shadow flag");
 }
 
+// Without an emitting volume voxelize leaves mediaEmission's store out (SPEC_EMISSION) and the frame
+// clears it: after an emitting scene on the same renderer (same grid, so the same images), the media and
+// the image of a scene without emission match the CPU, and no emission is left over from the first.
+TEST_F(GpuTest, EmissionLeftOutWhenNoVolumeEmitsLeavesNoEmissionFromAnEarlierScene) {
+    Scene s = baseScene();
+    Volume glow = box();
+    glow.medium.emission = {0.4f, 0.2f, 0.1f};
+    s.volumes = {glow, height(HeightProfile::Exponential)};
+    s.lights = {sun()};
+    RenderRequest request = smallRequest();
+    request.quality = Quality::High;
+    auto emittingFroxels = [&] {
+        auto gpu = renderer->render(s, request, true);
+        EXPECT_TRUE(gpu.ok()) << gpu.error().message;
+        size_t n = 0;
+        if (gpu.ok())
+            for (const glm::vec4& e : gpu.value().volumes.mediaEmission) n += e != glm::vec4(0.0f) ? 1 : 0;
+        return n;
+    };
+    expectMatchesCpu(s, "emitting box");
+    EXPECT_GT(emittingFroxels(), 0u);
+    s.volumes[0].medium.emission = glm::vec3(0.0f);
+    expectMatchesCpu(s, "the same box without emission");
+    EXPECT_EQ(emittingFroxels(), 0u);
+}
+
 // The sun shadow map (shared/sun_shadow.h): a roof of two slabs with a gap over height fog and the
 // ground, so the light pass sees a shaft and the geometry pass a lit strip among shadow; both
 // renderers must sample the same map the same way (PCF edges included), at low's map size too.
