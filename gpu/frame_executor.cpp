@@ -344,6 +344,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
+    const glm::ivec2 tiles = shd::depthTileCount(size);
+    BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(float), dirty));
     BRUME_TRY(ensureTexelViews(dirty));
     if (dirty) {
         writeDescriptorBindings(*device, bindings.set, res);
@@ -455,6 +457,11 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::TileCorners: {
             const glm::ivec2 corners = shd::distantTableCorners(r.size);
             vkCmdDispatch(ctx.cmd, groups(corners.x, shd::SCREEN_GROUP_X), groups(corners.y, shd::SCREEN_GROUP_Y), 1);
+            break;
+        }
+        case Dispatch::DepthTiles: {
+            const glm::ivec2 tiles = shd::depthTileCount(r.size);
+            vkCmdDispatch(ctx.cmd, groups(tiles.x, shd::SCREEN_GROUP_X), groups(tiles.y, shd::SCREEN_GROUP_Y), 1);
             break;
         }
         case Dispatch::Raster:

@@ -17,7 +17,7 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 11> kPasses{{
+const std::array<PassDecl, 12> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
@@ -61,11 +61,15 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource), historyIn(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction),
       I::sourceImage, I::mediaExtinction}},
+    // The deepest scene depth of each 8x8 pixel tile, for the distant fog pass (only when its table has
+    // more than DISTANT_TABLE_SCAN_FROM entries: shared/distant_table.h).
+    {"depth tiles", "depth_tiles", Variant::None, Dispatch::DepthTiles, When::SurfacesChanged, Record::Dispatch,
+     {B::frame, I::sceneDepth}, {B::depthTiles}, true},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
-    // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
+    // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);
     // the composite interpolates it.
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
-     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, I::sceneDepth},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, B::depthTiles},
      {B::distantTable}, true},
     // Fog over the surfaces, continued past the froxel far from the distant fog table.
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,

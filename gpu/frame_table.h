@@ -189,6 +189,7 @@ enum class Dispatch : uint8_t {
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
+    DepthTiles,   // one per 8x8 pixel tile of the screen (shared/distant_table.h depthTileCount), SCREEN_GROUP_*
     GlowRects,    // one dispatch per glowing light over its screen rectangle (shared/glow.h), SCREEN_GROUP_*
     Raster,       // the geometry pass's draw (not a dispatch)
 };
@@ -255,7 +256,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 11> kPasses;
+extern const std::array<PassDecl, 12> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);
