@@ -185,7 +185,10 @@ enum class Dispatch : uint8_t {
     RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
-    CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*
+    CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*;
+                      // with distant fog (FrameResources::compositeTiles) one workgroup per nearTiles entry (indirect)
+    FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
+    Single,       // one invocation
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
@@ -256,7 +259,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 12> kPasses;
+extern const std::array<PassDecl, 14> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -28,9 +28,9 @@ BRUME_FUNC ivec2 distantTableCorners(ivec2 size) {
     return ivec2((size.x - 1) / DISTANT_TILE_PX + 2, (size.y - 1) / DISTANT_TILE_PX + 2);
 }
 
-// The distant fog pass reads the scene depth around each corner to leave the entries no pixel reads
-// unwritten (distant_fog.comp), only when the table has more than this many entries: at `high` it has
-// one, and the depth tiles pass then writes nothing.
+// The distant fog pass reads the depth tiles around each corner to leave the entries no pixel reads
+// unwritten (distant_fog.comp), only when the table has more than this many entries (at `high` it has
+// one).
 BRUME_CONST int DISTANT_TABLE_SCAN_FROM = 2;
 
 // The scene depth's 8x8 pixel tiles (tile t holds pixels [8 t, 8 t + 7], cut at the image's edge):
