@@ -17,9 +17,12 @@ void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(t, tiles))) return;
     ivec2 first = t * DISTANT_TILE_PX;
-    ivec2 extent = min(first + DISTANT_TILE_PX, frame.counts.xy) - first;
+    ivec2 last = frame.counts.xy - 1;
+    // Fixed trip counts (unrolled), the coordinates held at the image's last row and column: a tile cut
+    // by the edge reads its edge pixels again, which leaves the maximum as it is.
     float deepest = 0.0f;
-    for (int y = 0; y < extent.y; ++y)
-        for (int x = 0; x < extent.x; ++x) deepest = max(deepest, imageLoad(sceneDepth, first + ivec2(x, y)).r);
+    for (int y = 0; y < DISTANT_TILE_PX; ++y)
+        for (int x = 0; x < DISTANT_TILE_PX; ++x)
+            deepest = max(deepest, imageLoad(sceneDepth, min(first + ivec2(x, y), last)).r);
     depthTileMax[depthTileIndex(tiles, t)] = deepest;
 }
