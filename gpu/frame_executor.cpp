@@ -433,7 +433,7 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::CompositePixels: {
             // A tile list's workgroup is one 8x8 pixel tile (composite_body.glsl).
             static_assert(shd::SCREEN_GROUP_X == shd::DISTANT_TILE_PX && shd::SCREEN_GROUP_Y == shd::DISTANT_TILE_PX);
-            if (r.compositeTiles) {
+            if (r.distantFog) {
                 vkCmdDispatchIndirect(ctx.cmd, r[BufferId::nearTiles].buffer.get(), 0);
                 break;
             }
@@ -442,7 +442,9 @@ void dispatchPass(const PassContext& ctx) {
             break;
         }
         case Dispatch::FarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::farTiles].buffer.get(), 0); break;
-        case Dispatch::Single: vkCmdDispatch(ctx.cmd, 1, 1, 1); break;
+        case Dispatch::Single:
+            if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
+            break;
         case Dispatch::ShadowCells:
             vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
@@ -466,11 +468,13 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
             break;
         case Dispatch::TileCorners: {
+            if (!r.distantFog) break;  // no table to fill
             const glm::ivec2 corners = shd::distantTableCorners(r.size);
             vkCmdDispatch(ctx.cmd, groups(corners.x, shd::SCREEN_GROUP_X), groups(corners.y, shd::SCREEN_GROUP_Y), 1);
             break;
         }
         case Dispatch::DepthTiles: {
+            if (!r.distantFog) break;  // no reader
             const glm::ivec2 tiles = shd::depthTileCount(r.size);
             vkCmdDispatch(ctx.cmd, groups(tiles.x, shd::SCREEN_GROUP_X), groups(tiles.y, shd::SCREEN_GROUP_Y), 1);
             break;

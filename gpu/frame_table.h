@@ -186,13 +186,15 @@ enum class Dispatch : uint8_t {
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
     CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*;
-                      // with distant fog (FrameResources::compositeTiles) one workgroup per nearTiles entry (indirect)
+                      // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
     FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
-    Single,       // one invocation
+    Single,       // one invocation, with distant fog only (the tile lists)
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
-    TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
-    DepthTiles,   // one per 8x8 pixel tile of the screen (shared/distant_table.h depthTileCount), SCREEN_GROUP_*
+    TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*,
+                  // with distant fog only (FrameResources::distantFog)
+    DepthTiles,   // one per 8x8 pixel tile of the screen (shared/distant_table.h depthTileCount), SCREEN_GROUP_*,
+                  // with distant fog only (as TileCorners)
     GlowRects,    // one dispatch per glowing light over its screen rectangle (shared/glow.h), SCREEN_GROUP_*
     Raster,       // the geometry pass's draw (not a dispatch)
 };
