@@ -17,7 +17,7 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 15> kPasses{{
+const std::array<PassDecl, 14> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
@@ -74,21 +74,15 @@ const std::array<PassDecl, 15> kPasses{{
     // With distant fog, the tiles within the froxel far and the others, as two indirect dispatches
     // (one invocation walks the depth tiles: tile_lists.comp).
     {"tile lists", "tile_lists", Variant::None, Dispatch::Single, When::Always, Record::Dispatch,
-     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles, B::skyTiles}, true},
+     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles}, true},
     // Fog over the surfaces from the integrated volume: the region's pixels, or with distant fog the
     // near tiles (composite_body.glsl).
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
      {B::frame, B::nearTiles, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
      {I::outputImage}, true},
-    // The far tiles (pixels on both sides of the froxel far): fog continued past the froxel far from the
-    // distant fog table.
+    // The far tiles: fog continued past the froxel far from the distant fog table.
     {"composite far", "composite_far", Variant::None, Dispatch::FarTiles, When::Always, Record::Dispatch,
      {B::frame, B::farTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
-      I::sceneDepth},
-     {I::outputImage}, true},
-    // The sky tiles (every pixel past the froxel far): the same, the integrated volume's last entry read once.
-    {"composite sky", "composite_sky", Variant::None, Dispatch::SkyTiles, When::Always, Record::Dispatch,
-     {B::frame, B::skyTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
@@ -168,8 +162,7 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::SkyTiles ||
-        p.dispatch == Dispatch::CompositePixels)
+    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::CompositePixels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }

@@ -5,9 +5,7 @@
 //
 // Two builds of this body: composite.comp without the distant fog table's lookup, over the region's
 // pixels or (with distant fog) the tiles whose pixels all lie within the froxel far; composite_far.comp
-// (BRUME_COMPOSITE_FAR) with it, over the tiles with pixels on both sides; composite_sky.comp (also
-// BRUME_COMPOSITE_SKY) over the tiles whose pixels all lie past it, reading one entry of the integrated
-// volume (tile_lists.comp). Lavapipe runs an untaken branch
+// (BRUME_COMPOSITE_FAR) with it, over the other tiles (tile_lists.comp). Lavapipe runs an untaken branch
 // under a mask, so a single shader paid for the 16 table reads on every pixel (docs/performance.md,
 // "pixel"); split by tile, each pixel computes exactly what the single shader computed.
 
@@ -29,14 +27,7 @@ Accumulated integratedAt(int x, int y, int s) {
 Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
     IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
     Accumulated byEntry[2];
-#ifdef BRUME_COMPOSITE_SKY
-    // Every pixel lies past the froxel far: both entries are the last one (integratedLookup), the same
-    // texels blended the same way, so the second is the first.
-    const int computed = 1;
-#else
-    const int computed = 2;
-#endif
-    for (int e = 0; e < computed; ++e) {
+    for (int e = 0; e < 2; ++e) {
         int s = k.entries[e];
         Accumulated row0 = mixAccumulated(integratedAt(k.columns.x, k.columns.y, s),
                                           integratedAt(k.columns.z, k.columns.y, s), k.weights.x);
@@ -44,7 +35,6 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
                                           integratedAt(k.columns.z, k.columns.w, s), k.weights.x);
         byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
     }
-    if (computed == 1) byEntry[1] = byEntry[0];
     Accumulated entries = mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
     return mixAccumulated(emptyAccumulated(), entries, k.entryWeight);
 }
@@ -81,9 +71,7 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
 // The pixel this invocation composites: with distant fog (SPEC_DISTANT_FOG), the workgroup's 8x8 tile
 // from the list of its variant (tile_lists.comp); else the region's pixels (the push constants).
 ivec2 compositePixel() {
-#if defined(BRUME_COMPOSITE_SKY)
-    uint tile = skyTileIndex[gl_WorkGroupID.x];
-#elif defined(BRUME_COMPOSITE_FAR)
+#ifdef BRUME_COMPOSITE_FAR
     uint tile = farTileIndex[gl_WorkGroupID.x];
 #else
     uint tile = nearTileIndex[gl_WorkGroupID.x];

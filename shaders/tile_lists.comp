@@ -1,10 +1,8 @@
 // The composite's tile lists (composite_body.glsl): the 8x8 pixel tiles whose pixels all lie within
-// the froxel far (their deepest depth, depth_tiles.comp, is not past it) go to nearTiles, those whose
-// pixels all lie past it (their shallowest depth is) to skyTiles, the others to farTiles, each with its
-// indirect dispatch (one workgroup per tile). The composite runs over the near tiles without the
-// distant fog table's lookup (lavapipe would run it under a mask for every pixel), the composite far
-// over the far tiles with it, the composite sky over the sky tiles with it and one entry of the
-// integrated volume: each pixel computes what the single composite computed.
+// the froxel far (their deepest depth, depth_tiles.comp, is not past it) go to nearTiles, the others to
+// farTiles, each with its indirect dispatch (one workgroup per tile). The composite runs over the near
+// tiles without the distant fog table's lookup (lavapipe would run it under a mask for every pixel),
+// the composite far over the others with it: each pixel computes what the single composite computed.
 // One invocation walks the tiles in order: no atomics, the same lists every time, and a few tens of
 // thousands of trips cost well under a millisecond. Only with distant fog (SPEC_DISTANT_FOG); else
 // the lists stay as the frame reset them (empty) and the composite dispatches over its pixel region.
@@ -22,21 +20,14 @@ void main() {
     float froxelFar = frame.froxelRange.y;
     uint near = 0u;
     uint far = 0u;
-    uint sky = 0u;
     for (int i = 0; i < count; ++i) {
         // As the composite's test: a pixel reads the distant fog where its depth is past the froxel far.
-        vec2 range = depthTileRange[i];
-        bool isSky = range.x > froxelFar;
-        bool isFar = range.y > froxelFar && !isSky;
-        bool isNear = !isFar && !isSky;
-        if (isSky) skyTileIndex[sky] = uint(i);
+        bool isFar = depthTileMax[i] > froxelFar;
         if (isFar) farTileIndex[far] = uint(i);
-        if (isNear) nearTileIndex[near] = uint(i);
-        sky += isSky ? 1u : 0u;
+        else nearTileIndex[near] = uint(i);
         far += isFar ? 1u : 0u;
-        near += isNear ? 1u : 0u;
+        near += isFar ? 0u : 1u;
     }
     nearTileList = ExactListHeader(near, 1u, 1u, near);
     farTileList = ExactListHeader(far, 1u, 1u, far);
-    skyTileList = ExactListHeader(sky, 1u, 1u, sky);
 }
