@@ -344,6 +344,11 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
+    const glm::ivec2 tiles = shd::depthTileCount(size);
+    BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(float), dirty));
+    const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
+    BRUME_TRY(ensureBuffer(BufferId::nearTiles, tileList, dirty));
+    BRUME_TRY(ensureBuffer(BufferId::farTiles, tileList, dirty));
     BRUME_TRY(ensureTexelViews(dirty));
     if (dirty) {
         writeDescriptorBindings(*device, bindings.set, res);
@@ -428,10 +433,20 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(r.size.x, shd::SCREEN_GROUP_X), groups(r.size.y, shd::SCREEN_GROUP_Y), 1);
             break;
         case Dispatch::CompositePixels: {
+            // A tile list's workgroup is one 8x8 pixel tile (composite_body.glsl).
+            static_assert(shd::SCREEN_GROUP_X == shd::DISTANT_TILE_PX && shd::SCREEN_GROUP_Y == shd::DISTANT_TILE_PX);
+            if (r.distantFog) {
+                vkCmdDispatchIndirect(ctx.cmd, r[BufferId::nearTiles].buffer.get(), 0);
+                break;
+            }
             const glm::ivec2 e = glm::max(r.compositeHi - r.compositeLo, glm::ivec2(0));
             vkCmdDispatch(ctx.cmd, groups(e.x, shd::SCREEN_GROUP_X), groups(e.y, shd::SCREEN_GROUP_Y), 1);
             break;
         }
+        case Dispatch::FarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::farTiles].buffer.get(), 0); break;
+        case Dispatch::Single:
+            if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
+            break;
         case Dispatch::ShadowCells:
             vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
@@ -459,8 +474,15 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
             break;
         case Dispatch::TileCorners: {
+            if (!r.distantFog) break;  // no table to fill
             const glm::ivec2 corners = shd::distantTableCorners(r.size);
             vkCmdDispatch(ctx.cmd, groups(corners.x, shd::SCREEN_GROUP_X), groups(corners.y, shd::SCREEN_GROUP_Y), 1);
+            break;
+        }
+        case Dispatch::DepthTiles: {
+            if (!r.distantFog) break;  // no reader
+            const glm::ivec2 tiles = shd::depthTileCount(r.size);
+            vkCmdDispatch(ctx.cmd, groups(tiles.x, shd::SCREEN_GROUP_X), groups(tiles.y, shd::SCREEN_GROUP_Y), 1);
             break;
         }
         case Dispatch::Raster:

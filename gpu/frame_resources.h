@@ -53,6 +53,11 @@ struct FrameResources {
     // others get sceneColor copied (frame_executor.cpp recordComposite).
     glm::ivec2 compositeLo{0};
     glm::ivec2 compositeHi{0};
+    // Height or depth fog past the froxel far this frame (SPEC_DISTANT_FOG): the composite dispatches
+    // over the nearTiles list (compositeLo, compositeHi then the whole screen), the composite far over
+    // farTiles (shaders/tile_lists.comp). Without it the depth tiles, distant fog and tile lists passes
+    // dispatch nothing (their shaders would return at once).
+    bool distantFog = false;
     // The froxels the voxelize and light passes dispatch over (core/media_region.h); the rest of
     // the media and source images is cleared to 0 when it is not the whole grid.
     glm::ivec3 mediaOrigin{0};

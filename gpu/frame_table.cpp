@@ -17,7 +17,7 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 11> kPasses{{
+const std::array<PassDecl, 14> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
@@ -62,15 +62,29 @@ const std::array<PassDecl, 11> kPasses{{
      {B::frame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
       historyOut(H::historySource), historyOut(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
+    // The deepest scene depth of each 8x8 pixel tile, with distant fog: the distant fog pass's corners
+    // and the composite's tile lists read it (shared/distant_table.h).
+    {"depth tiles", "depth_tiles", Variant::None, Dispatch::DepthTiles, When::SurfacesChanged, Record::Dispatch,
+     {B::frame, I::sceneDepth}, {B::depthTiles}, true},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
-    // (shared/distant_table.h), up to the deepest entry the corner's pixels read (the scene depth);
+    // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);
     // the composite interpolates it.
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
-     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, I::sceneDepth},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, B::depthTiles},
      {B::distantTable}, true},
-    // Fog over the surfaces, continued past the froxel far from the distant fog table.
+    // With distant fog, the tiles within the froxel far and the others, as two indirect dispatches
+    // (one invocation walks the depth tiles: tile_lists.comp).
+    {"tile lists", "tile_lists", Variant::None, Dispatch::Single, When::Always, Record::Dispatch,
+     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles}, true},
+    // Fog over the surfaces from the integrated volume: the region's pixels, or with distant fog the
+    // near tiles (composite_body.glsl).
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
-     {B::frame, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
+     {B::frame, B::nearTiles, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
+     {I::outputImage}, true},
+    // The far tiles: fog continued past the froxel far from the distant fog table.
+    {"composite far", "composite_far", Variant::None, Dispatch::FarTiles, When::Always, Record::Dispatch,
+     {B::frame, B::farTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
+      I::sceneDepth},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
     // added to the output over each glowing light's screen rectangle only.
@@ -149,7 +163,7 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    if (p.dispatch == Dispatch::ExactFroxels)
+    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::CompositePixels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }

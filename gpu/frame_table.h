@@ -186,10 +186,16 @@ enum class Dispatch : uint8_t {
     RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
-    CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*
+    CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*;
+                      // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
+    FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
+    Single,       // one invocation, with distant fog only (the tile lists)
     ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
-    TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*
+    TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*,
+                  // with distant fog only (FrameResources::distantFog)
+    DepthTiles,   // one per 8x8 pixel tile of the screen (shared/distant_table.h depthTileCount), SCREEN_GROUP_*,
+                  // with distant fog only (as TileCorners)
     GlowRects,    // one dispatch per glowing light over its screen rectangle (shared/glow.h), SCREEN_GROUP_*
     Raster,       // the geometry pass's draw (not a dispatch)
 };
@@ -256,7 +262,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 11> kPasses;
+extern const std::array<PassDecl, 14> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

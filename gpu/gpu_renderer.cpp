@@ -345,8 +345,8 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         // Temporal and integrate run over the media region and its neighbours; the history side written
         // now is cleared first if an older frame left values outside them (FrameResources).
         r.temporalRegion = temporalFroxelRegion(media, dims);
-        std::tie(r.compositeLo, r.compositeHi) =
-            compositePixels(r.temporalRegion, size, frame.froxelDims.w, s_->spec[SpecId::SPEC_DISTANT_FOG] != 0);
+        r.distantFog = s_->spec[SpecId::SPEC_DISTANT_FOG] != 0;
+        std::tie(r.compositeLo, r.compositeHi) = compositePixels(r.temporalRegion, size, frame.froxelDims.w, r.distantFog);
         FroxelRegion& written = r.historyWritten[static_cast<size_t>(t.writeIndex)];
         r.clearHistoryOut = !regionContains(r.temporalRegion, written);
         written = FroxelRegion{glm::ivec3(0), dims};  // unknown until the frame has run

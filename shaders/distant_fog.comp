@@ -48,17 +48,18 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
 // lookup (distantTableLookup) takes this corner, [8 (c - 1), 8 c + 7] in x and y; one reads entries
 // j - 1 and j for its depth's j, and nothing at or before the froxel far. The entries past the
 // deepest pixel's are left unwritten: at `low` (froxel far 48 m, camera far 100 m: 8 entries) most
-// of the default scene's corners see only ground and walls within the froxels. The depth scan costs
-// 256 loads per corner, so it runs only where more than DISTANT_TABLE_SCAN_FROM entries are at
-// stake (a uniform branch, skipped by all lanes alike): at `high` the table has one entry.
-const int DISTANT_TABLE_SCAN_FROM = 2;
+// of the default scene's corners see only ground and walls within the froxels. The deepest pixel is
+// the deepest of the corner's tiles c - 1 and c per axis (the depth tiles pass, depth_tiles.comp: a
+// pixel read once, not by 4 corners). Only where more than DISTANT_TABLE_SCAN_FROM entries are at
+// stake: at `high` the table has one entry, and the depth tiles pass writes nothing.
 int distantTableEntriesRead(ivec2 c, int n) {
     if (n <= DISTANT_TABLE_SCAN_FROM) return n;
-    ivec2 first = max((c - 1) * DISTANT_TILE_PX, ivec2(0));
-    ivec2 last = min(c * DISTANT_TILE_PX + (DISTANT_TILE_PX - 1), frame.counts.xy - 1);
+    ivec2 tiles = depthTileCount(frame.counts.xy);
+    ivec2 first = max(c - 1, ivec2(0));
+    ivec2 last = min(c, tiles - 1);
     float deepest = 0.0f;
     for (int y = first.y; y <= last.y; ++y)
-        for (int x = first.x; x <= last.x; ++x) deepest = max(deepest, imageLoad(sceneDepth, ivec2(x, y)).r);
+        for (int x = first.x; x <= last.x; ++x) deepest = max(deepest, depthTileMax[depthTileIndex(tiles, ivec2(x, y))]);
     if (!(deepest > frame.froxelRange.y)) return 0;
     // One entry more than the deepest pixel's: the lookup's log and ceil need not match bit for bit.
     return min(distantTableLookup(vec2(0.0f), deepest, frame, n).entry + 1, n);

@@ -599,7 +599,8 @@ TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
     auto gpu = renderer->render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
     const std::vector<std::string> expected{"shadow volume", "geometry",    "voxelize",  "light", "light exact",
-                                            "temporal",      "integrate",   "distant fog", "composite", "glow",
+                                            "temporal",      "integrate",   "depth tiles", "distant fog",
+                                            "tile lists",    "composite",   "composite far", "glow",
                                             "readback"};
     ASSERT_EQ(gpu.value().passes.size(), expected.size());
     double sum = 0.0;

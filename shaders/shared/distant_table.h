@@ -28,6 +28,21 @@ BRUME_FUNC ivec2 distantTableCorners(ivec2 size) {
     return ivec2((size.x - 1) / DISTANT_TILE_PX + 2, (size.y - 1) / DISTANT_TILE_PX + 2);
 }
 
+// The distant fog pass reads the depth tiles around each corner to leave the entries no pixel reads
+// unwritten (distant_fog.comp), only when the table has more than this many entries (at `high` it has
+// one).
+BRUME_CONST int DISTANT_TABLE_SCAN_FROM = 2;
+
+// The scene depth's 8x8 pixel tiles (tile t holds pixels [8 t, 8 t + 7], cut at the image's edge):
+// tiles per row and column, and the index of tile t in the depthTiles buffer. Corner c's pixels (those
+// whose lookup takes it, [8 (c - 1), 8 c + 7]) are exactly tiles c - 1 and c in each axis, those that
+// exist: the deepest of them is the deepest of at most 4 tile maxima.
+BRUME_FUNC ivec2 depthTileCount(ivec2 size) {
+    return ivec2((size.x - 1) / DISTANT_TILE_PX + 1, (size.y - 1) / DISTANT_TILE_PX + 1);
+}
+
+BRUME_FUNC int depthTileIndex(ivec2 tiles, ivec2 t) { return t.y * tiles.x + t.x; }
+
 // Entries per corner this frame: 0 when the froxels reach the camera far (no distant fog).
 BRUME_FUNC int distantTableEntries(FrameUniforms f) {
     float froxelFar = f.froxelRange.y;

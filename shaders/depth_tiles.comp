@@ -1,0 +1,28 @@
+// The deepest view depth of each 8x8 pixel tile of the scene depth (shared/distant_table.h
+// depthTileIndex), with distant fog only: the distant fog pass takes each table corner's deepest pixel
+// from its (at most 4) tiles instead of reading its 16x16 pixels itself (every pixel read once instead
+// of 4 times), and the tile lists pass sorts the tiles for the composite (docs/performance.md, "pixel").
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define BRUME_FROXEL_IMAGES
+#include "resources.glsl"
+#include "distant_table.h"
+
+layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
+
+void main() {
+    // SPEC_DISTANT_FOG 0: no pass reads the tiles.
+    if (SPEC_DISTANT_FOG == 0) return;
+    ivec2 tiles = depthTileCount(frame.counts.xy);
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(t, tiles))) return;
+    ivec2 first = t * DISTANT_TILE_PX;
+    ivec2 last = frame.counts.xy - 1;
+    // Fixed trip counts (unrolled), the coordinates held at the image's last row and column: a tile cut
+    // by the edge reads its edge pixels again, which leaves the maximum as it is.
+    float deepest = 0.0f;
+    for (int y = 0; y < DISTANT_TILE_PX; ++y)
+        for (int x = 0; x < DISTANT_TILE_PX; ++x)
+            deepest = max(deepest, imageLoad(sceneDepth, min(first + ivec2(x, y), last)).r);
+    depthTileMax[depthTileIndex(tiles, t)] = deepest;
+}
