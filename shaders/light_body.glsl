@@ -45,6 +45,10 @@ float lightMapVisibility(int i, vec3 p, float sun) {
     return (i == frame.sunShadowLight - 1 ? sun : 1.0f) * localShadowVisibility(i, p);
 }
 
+// The froxel's emission: 0 without a load when no volume emits (SPEC_EMISSION; the frame then clears
+// mediaEmission, so the value is the same).
+vec3 mediaEmissionAt(ivec3 id) { return SPEC_EMISSION != 0 ? imageLoad(mediaEmission, id).rgb : vec3(0.0f); }
+
 // glow.h evalLightFroxel with the light's glow radius this frame read from l.spot.z, where the GPU
 // renderer writes lightGlowRadius(l, frame) once per frame (gpu_renderer.cpp writeLightGlowRadii):
 // the radius is the same for every froxel, and its pow, matrix product and square root cost every
@@ -93,7 +97,7 @@ void lightFroxel(ivec3 id) {
         perSigmaS += inScatter * exactFogTransmittance(i, shadow, corners, p, ls.toLight, ls.distance) *
                      lightMapVisibility(i, p, sun);
     }
-    vec3 source = scatteringG.rgb * perSigmaS + imageLoad(mediaEmission, id).rgb;
+    vec3 source = scatteringG.rgb * perSigmaS + mediaEmissionAt(id);
     imageStore(sourceImage, id, vec4(source, 0.0f));
 }
 #else
@@ -173,7 +177,7 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
         valid[j] = z0 + j >= zLo && z0 + j <= zHi;
         media[j] = imageLoad(mediaExtinction, id).rgb != vec3(0.0f);
         scatteringG[j] = imageLoad(mediaScatteringG, id);
-        emission[j] = imageLoad(mediaEmission, id).rgb;
+        emission[j] = mediaEmissionAt(id);
         p[j] = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
         viewDir[j] = normalize(p[j] - frame.cameraPosition.xyz);
         perSigmaS[j] = frame.ambient.rgb;
