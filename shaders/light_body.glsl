@@ -126,25 +126,13 @@ int blockLevel(int z0, int j, int r) {
     return (z0 + j) / r - z0 / r;
 }
 
-// One level of a light's 8 cells along z: the 4 cells' bilinear blend and their min and max
-// (fog_shadow.glsl blendShadowCorners / shadow_volume.h shadowBlend, split by level).
-struct CellLevel {
-    vec3 blend;
-    vec3 lo;
-    vec3 hi;
-};
-
-CellLevel cellLevel(int base, ivec4 xy, vec2 w) {
-    vec3 c00 = shadowEntry(base + xy.x), c01 = shadowEntry(base + xy.y), c10 = shadowEntry(base + xy.z),
-         c11 = shadowEntry(base + xy.w);
-    CellLevel l;
-    l.blend = mix(mix(c00, c01, w.x), mix(c10, c11, w.x), w.y);
-    l.lo = min(min(c00, c01), min(c10, c11));
-    l.hi = max(max(c00, c01), max(c10, c11));
-    return l;
+// One level of a light's 8 cells along z (shadow_volume.h shadowLevel), its 4 cells fetched.
+ShadowLevel cellLevel(int base, ivec4 xy, vec2 w) {
+    return shadowLevel(shadowEntry(base + xy.x), shadowEntry(base + xy.y), shadowEntry(base + xy.z),
+                       shadowEntry(base + xy.w), w);
 }
 
-CellLevel pickLevel(int n, CellLevel l0, CellLevel l1, CellLevel l2, CellLevel l3, CellLevel l4) {
+ShadowLevel pickLevel(int n, ShadowLevel l0, ShadowLevel l1, ShadowLevel l2, ShadowLevel l3, ShadowLevel l4) {
     return n == 0 ? l0 : (n == 1 ? l1 : (n == 2 ? l2 : (n == 3 ? l3 : l4)));
 }
 
@@ -210,22 +198,21 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
         LightData l = lightAt(i);
         bool shadows = fogShadowsLight(l, localFogShadowsFlag());
         int base = i * layer;
-        CellLevel l0 = cellLevel(base + lowerLevels.x, xyCorners, wxy);
-        CellLevel l1 = cellLevel(base + lowerLevels.y, xyCorners, wxy);
-        CellLevel l2 = cellLevel(base + lowerLevels.z, xyCorners, wxy);
-        CellLevel l3 = cellLevel(base + lowerLevels.w, xyCorners, wxy);
-        CellLevel l4 = cellLevel(base + topLevel, xyCorners, wxy);
+        ShadowLevel l0 = cellLevel(base + lowerLevels.x, xyCorners, wxy);
+        ShadowLevel l1 = cellLevel(base + lowerLevels.y, xyCorners, wxy);
+        ShadowLevel l2 = cellLevel(base + lowerLevels.z, xyCorners, wxy);
+        ShadowLevel l3 = cellLevel(base + lowerLevels.w, xyCorners, wxy);
+        ShadowLevel l4 = cellLevel(base + topLevel, xyCorners, wxy);
         [[unroll]] for (int j = 0; j < LIGHT_BLOCK; ++j) {
             LightSample ls = lightFroxelSample(l, p[j], nearest[j]);
             vec3 inScatter = inScatterPerSigmaS(l, ls, viewDir[j], phase[j]);
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
             if (inScatter == vec3(0.0f)) continue;
-            CellLevel lower = pickLevel(level[j], l0, l1, l2, l3, l4);
-            CellLevel upper = pickLevel(level[j] + 1, l0, l1, l2, l3, l4);
-            vec3 spread = max(lower.hi, upper.hi) - min(lower.lo, upper.lo);
-            bool trusted = !shadows || max(spread.x, max(spread.y, spread.z)) <= SHADOW_VOLUME_SPREAD;
-            vec3 transmittance = shadows ? mix(lower.blend, upper.blend, shadow[j].weights.z) * vdbShadowBlend(i, shadow[j])
-                                         : vec3(1.0f);
+            ShadowLevel lower = pickLevel(level[j], l0, l1, l2, l3, l4);
+            ShadowLevel upper = pickLevel(level[j] + 1, l0, l1, l2, l3, l4);
+            ShadowBlend b = shadowBlendLevels(lower, upper, shadow[j].weights.z);
+            bool trusted = !shadows || b.trusted;
+            vec3 transmittance = shadows ? b.transmittance * vdbShadowBlend(i, shadow[j]) : vec3(1.0f);
             perSigmaS[j] += inScatter * transmittance * lightMapVisibility(i, p[j], sun[j]);
             exact[j] = exact[j] || !trusted;
         }

@@ -13,18 +13,9 @@
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };  // cells, not froxels
 
-// a / b for 0 <= a < 2^20 and b >= 1 through a float division: lavapipe runs an integer division lane
-// by lane (8 scalar divisions per batch), a float one as one vector instruction (docs/performance.md,
-// "media"). Exact: (a + 0.5) / b lies at least 0.5 / b from an integer, and the division's error
-// (2.5 ulp: under 3e-7 of the quotient) stays below that while a + 0.5 < 1.6e6.
-int smallQuotient(int a, int b) { return int((float(a) + 0.5f) / float(b)); }
-
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
-    // shadowVolumeDims(frame.froxelDims.xyz, r), its divisions through smallQuotient.
-    int r = frame.shadowReduction;
-    ivec3 n = frame.froxelDims.xyz + ivec3(r - 2);
-    ivec3 cells = ivec3(smallQuotient(n.x, r), smallQuotient(n.y, r), smallQuotient(n.z, r)) + ivec3(1);
+    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadowReduction);
     // Only the layers some reader needs, listed by the light reach (core/light_reach.h); the others
     // are never read.
     int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;

@@ -15,15 +15,9 @@
 layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };  // cells, not froxels
 
-// a / b for 0 <= a < 2^20 and b >= 1, exact, through a float division (shadow_volume.comp).
-int smallQuotient(int a, int b) { return int((float(a) + 0.5f) / float(b)); }
-
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
-    // shadowVolumeDims(frame.froxelDims.xyz, r), its divisions through smallQuotient.
-    int r = frame.shadowReduction;
-    ivec3 n = frame.froxelDims.xyz + ivec3(r - 2);
-    ivec3 cells = ivec3(smallQuotient(n.x, r), smallQuotient(n.y, r), smallQuotient(n.z, r)) + ivec3(1);
+    ivec3 cells = shadowVolumeDims(frame.froxelDims.xyz, frame.shadowReduction);
     // The same layers as shadow_volume.comp: only those the light reach lists.
     int layers = lightReachOffset(frame.froxelDims.xyz) + 1 + frame.counts.w;
     // Over the cells some reader needs (region: core/media_region.h shadowCellRegion): the others

@@ -438,3 +438,23 @@ TEST(FogShadowClosedForm, HeightExponentialLengthOnDegenerateRays) {
         EXPECT_NEAR(got, want, 1e-5 * want) << "y0 " << k.y0 << " dy " << k.dy << " len " << k.len;
     }
 }
+
+// The shadow volume's cell counts and its pass's layer index divide through a float (shadow_volume.h
+// smallQuotient, cheaper than an integer division on lavapipe): exact against the integer division
+// over its range, at its top end and around every multiple of the divisor.
+TEST(ShadowVolume, SmallQuotientIsTheIntegerQuotientUpToItsLimit) {
+    const int top = shd::SMALL_QUOTIENT_LIMIT - 1;
+    for (int b = 1; b <= 300; ++b) {
+        for (int a = 0; a < 5000; ++a) ASSERT_EQ(shd::smallQuotient(a, b), a / b) << a << " / " << b;
+        for (int a = top - 5000; a <= top; ++a) ASSERT_EQ(shd::smallQuotient(a, b), a / b) << a << " / " << b;
+    }
+    for (int b : {301, 1000, 4095, 65536, top})
+        for (int k = 0; k * b <= top; k += std::max(1, top / b / 2000))
+            for (int a = std::max(0, k * b - 1); a <= std::min(top, k * b + 1); ++a)
+                ASSERT_EQ(shd::smallQuotient(a, b), a / b) << a << " / " << b;
+    for (int r = 1; r <= 8; ++r)
+        for (int d = 1; d <= 1024; ++d) {
+            const glm::ivec3 dims(d, d + 1, d + 7);
+            EXPECT_EQ(shd::shadowVolumeDims(dims, r), (dims - 1 + (r - 1)) / r + 1) << d << ", r " << r;
+        }
+}

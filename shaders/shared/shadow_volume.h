@@ -19,9 +19,19 @@ BRUME_NAMESPACE_BEGIN
 // Largest difference (any channel) between the 8 cells' transmittances that is interpolated.
 BRUME_CONST float SHADOW_VOLUME_SPREAD = 0.05f;
 
-// Cells per axis: enough that the last froxel has a cell at or past it.
+// a / b (integer quotient) for 0 <= a < SMALL_QUOTIENT_LIMIT and b >= 1, through a float division:
+// lavapipe runs an integer division lane by lane (8 scalar divisions per batch), a float one as one
+// vector instruction (docs/performance.md, "media"). Exact: (a + 0.5) / b lies at least 0.5 / b from
+// an integer, and the division's error (GLSL allows 2.5 ulp: under 1.5e-7 of the quotient a / b) stays
+// below that while a < 3.3e6; tests/test_shadows.cpp checks it against the integer division.
+BRUME_CONST int SMALL_QUOTIENT_LIMIT = 1 << 20;
+BRUME_FUNC int smallQuotient(int a, int b) { return int((float(a) + 0.5f) / float(b)); }
+
+// Cells per axis: enough that the last froxel has a cell at or past it, (dims - 1 + r - 1) / r + 1
+// (dims are far below SMALL_QUOTIENT_LIMIT).
 BRUME_FUNC ivec3 shadowVolumeDims(ivec3 froxelDims, int r) {
-    return (froxelDims - ivec3(1) + ivec3(r - 1)) / r + ivec3(1);
+    ivec3 n = froxelDims + ivec3(r - 2);
+    return ivec3(smallQuotient(n.x, r), smallQuotient(n.y, r), smallQuotient(n.z, r)) + ivec3(1);
 }
 
 // The froxel whose sample point cell c holds.
@@ -84,17 +94,35 @@ struct ShadowBlend {
 };
 
 // c<z><y><x>: c000 is the lower corner, c001 one step along x, c111 the upper corner.
-BRUME_FUNC ShadowBlend shadowBlend(vec3 c000, vec3 c001, vec3 c010, vec3 c011, vec3 c100, vec3 c101, vec3 c110,
-                                   vec3 c111, vec3 w) {
-    vec3 lo = min(min(min(c000, c001), min(c010, c011)), min(min(c100, c101), min(c110, c111)));
-    vec3 hi = max(max(max(c000, c001), max(c010, c011)), max(max(c100, c101), max(c110, c111)));
-    vec3 spread = hi - lo;
+// One level along z of a lookup's 8 cells (c<y><x>): their bilinear blend and their min and max.
+// The light pass reads each level once for a block of froxels that share it (light_body.glsl).
+struct ShadowLevel {
+    vec3 blend;
+    vec3 lo;
+    vec3 hi;
+};
+
+BRUME_FUNC ShadowLevel shadowLevel(vec3 c00, vec3 c01, vec3 c10, vec3 c11, vec2 w) {
+    ShadowLevel l;
+    l.blend = mix(mix(c00, c01, w.x), mix(c10, c11, w.x), w.y);
+    l.lo = min(min(c00, c01), min(c10, c11));
+    l.hi = max(max(c00, c01), max(c10, c11));
+    return l;
+}
+
+// The blend between the lower and upper levels, trusted where the 8 cells agree.
+BRUME_FUNC ShadowBlend shadowBlendLevels(ShadowLevel lower, ShadowLevel upper, float wz) {
+    vec3 spread = max(lower.hi, upper.hi) - min(lower.lo, upper.lo);
     ShadowBlend b;
     b.trusted = max(spread.x, max(spread.y, spread.z)) <= SHADOW_VOLUME_SPREAD;
-    vec3 y0 = mix(mix(c000, c001, w.x), mix(c010, c011, w.x), w.y);
-    vec3 y1 = mix(mix(c100, c101, w.x), mix(c110, c111, w.x), w.y);
-    b.transmittance = mix(y0, y1, w.z);
+    b.transmittance = mix(lower.blend, upper.blend, wz);
     return b;
+}
+
+BRUME_FUNC ShadowBlend shadowBlend(vec3 c000, vec3 c001, vec3 c010, vec3 c011, vec3 c100, vec3 c101, vec3 c110,
+                                   vec3 c111, vec3 w) {
+    return shadowBlendLevels(shadowLevel(c000, c001, c010, c011, vec2(w)), shadowLevel(c100, c101, c110, c111, vec2(w)),
+                             w.z);
 }
 
 BRUME_NAMESPACE_END
