@@ -14,16 +14,35 @@
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
 
+// Volume i's density length over the piece [s0, s1] (shared/distant.h). With the scene's volume list
+// specialized (SPEC_VOLUME_COUNT >= 0; this pass gets the scene's whole list, none culled) the sums
+// below are unrolled, i is a constant and so is its kind: only that kind's form is built for it, a box
+// none, and the light sum's lengths are the volume sum's expressions again. The loop over
+// frame.counts.z ran every used kind's form for every volume, twice per light (lavapipe runs every
+// branch): docs/performance.md, "pixel" of round six.
+float pieceLength(int i, vec3 dir, float s0, float s1) {
+    VolumeData v = volumeAt(i);
+    if (SPEC_VOLUME_COUNT >= 0) v.kind.x = listedVolumeKind(i);  // the same value, as a constant
+    return distantDensityLength(v, frame.cameraPosition.xyz, dir, s0, s1);
+}
+
 // Height and depth fog along the camera ray between ray distances s0 and s1 as one piece, lit by the
 // directional lights (their fog transmittance at the piece's geometric middle) and the ambient.
-// Each light's transmittance is evaluated once per piece, outside the loop over volumes (it does not
-// depend on the volume).
+// Each light's transmittance is evaluated once per piece, outside the sum over volumes (it does not
+// depend on the volume). The sums run over the volumes in order, as the CPU's (buildDistantTable).
 Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) {
     vec3 middle = frame.cameraPosition.xyz + dir * sqrt(s0 * s1);
     DistantSegment seg = emptyDistantSegment();
-    for (int i = 0; i < frame.counts.z; ++i) {
-        float len = distantDensityLength(volumeAt(i), frame.cameraPosition.xyz, dir, s0, s1);
-        seg = addDistantVolume(seg, volumeAt(i), len, frame.ambient.rgb);
+    if (SPEC_VOLUME_COUNT >= 0) {
+#define BRUME_DISTANT_VOLUME(i) \
+    if (i < SPEC_VOLUME_COUNT) seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, dir, s0, s1), frame.ambient.rgb);
+        BRUME_DISTANT_VOLUME(0) BRUME_DISTANT_VOLUME(1) BRUME_DISTANT_VOLUME(2) BRUME_DISTANT_VOLUME(3)
+        BRUME_DISTANT_VOLUME(4) BRUME_DISTANT_VOLUME(5) BRUME_DISTANT_VOLUME(6) BRUME_DISTANT_VOLUME(7)
+        BRUME_DISTANT_VOLUME(8) BRUME_DISTANT_VOLUME(9)
+#undef BRUME_DISTANT_VOLUME
+    } else {
+        for (int i = 0; i < frame.counts.z; ++i)
+            seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, dir, s0, s1), frame.ambient.rgb);
     }
     // The surface lights (core/light_reach.h) hold every directional light that shines, in
     // increasing order, before any other: the CPU's sum over all lights, stopping at the first
@@ -36,9 +55,19 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
         LightData l = lightAt(j);
         if (SPEC_DIRECTIONAL_LIGHTS < 0 && l.kind.x != LIGHT_DIRECTIONAL) break;
         vec3 t = lightFogTransmittance(l, middle, -l.direction.xyz, BRUME_HUGE);
-        for (int i = 0; i < frame.counts.z; ++i) {
-            float len = distantDensityLength(volumeAt(i), frame.cameraPosition.xyz, dir, s0, s1);
-            seg = addDistantLight(seg, volumeAt(i), len, distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
+        if (SPEC_VOLUME_COUNT >= 0) {
+#define BRUME_DISTANT_LIGHT(i)                                                                                   \
+    if (i < SPEC_VOLUME_COUNT)                                                                                   \
+        seg = addDistantLight(seg, volumeAt(i), pieceLength(i, dir, s0, s1),                                     \
+                              distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
+            BRUME_DISTANT_LIGHT(0) BRUME_DISTANT_LIGHT(1) BRUME_DISTANT_LIGHT(2) BRUME_DISTANT_LIGHT(3)
+            BRUME_DISTANT_LIGHT(4) BRUME_DISTANT_LIGHT(5) BRUME_DISTANT_LIGHT(6) BRUME_DISTANT_LIGHT(7)
+            BRUME_DISTANT_LIGHT(8) BRUME_DISTANT_LIGHT(9)
+#undef BRUME_DISTANT_LIGHT
+        } else {
+            for (int i = 0; i < frame.counts.z; ++i)
+                seg = addDistantLight(seg, volumeAt(i), pieceLength(i, dir, s0, s1),
+                                      distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
         }
     }
     return accumulateDistant(a, seg);
