@@ -89,7 +89,7 @@ const std::array<PassDecl, 14> kPasses{{
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
     // added to the output over each glowing light's screen rectangle only.
     {"glow", "glow", Variant::None, Dispatch::GlowRects, When::Always, Record::Glow,
-     {B::frame, B::lights, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG,
+     {B::frame, T::lightTexels, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG,
       historyOut(H::historyExtinction), I::outputImage},
      {I::outputImage}},
     // One depth slice of density, scattering or transmittance over the output (only when asked).

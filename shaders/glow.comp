@@ -5,6 +5,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
+// The light through the texel view lightTexels (resources.glsl lightAt): lavapipe loads a storage
+// buffer's LightData lane by lane (docs/performance.md, "texel2").
+#define BRUME_LIGHT_TEXELS
 #include "resources.glsl"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
@@ -43,7 +46,7 @@ void main() {
     float rayPerDepth = length(viewRay);
     vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
     vec3 origin = frame.cameraPosition.xyz;
-    LightData l = lights[glow.light.x];
+    LightData l = lightAt(glow.light.x);
     LightGlowRay r = lightGlowRay(l, frame, origin, dir, viewDepth * rayPerDepth);
     if (r.radius <= 0.0f) return;
     ivec3 m = lightGlowFroxel(r, origin, dir, frame);
