@@ -193,6 +193,20 @@ TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
     }
 }
 
+// distant_fog.comp takes each volume's kind from SPEC_VOLUME_LIST: its pipeline must get the scene's
+// whole list, where every volume's kind is its own (a culled volume would lose its height or depth fog
+// past the froxel far, which no froxel pass's reach covers).
+TEST(FrameTable, TheDistantFogPassSeesEveryVolume) {
+    int found = 0;
+    for (const PassDecl& p : kPasses) {
+        if (std::string(p.shader) != "distant_fog") continue;
+        ++found;
+        EXPECT_TRUE(p.specialized);
+        EXPECT_FALSE(p.culledVolumes);
+    }
+    EXPECT_EQ(found, 1);
+}
+
 TEST(FrameTable, VariantNamesFollowTheBuild) {
     EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {}), "voxelize.comp");
     EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {true, true, VdbEncoding::Fp16}),
