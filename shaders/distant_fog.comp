@@ -106,9 +106,12 @@ void main() {
     float rayPerDepth = length(viewRay);
     vec3 dir = normalize(vec3(frame.worldFromView * vec4(viewRay, 0.0f)));
     Accumulated a = emptyAccumulated();
+    // Each step starts where the previous one ended: one distantTableDepth (a pow) per step, not two.
+    float stepStart = distantTableDepth(frame, 0, n) * rayPerDepth;
     for (int j = 1; j <= needed; ++j) {
-        a = accumulateDistantPiece(a, dir, distantTableDepth(frame, j - 1, n) * rayPerDepth,
-                                   distantTableDepth(frame, j, n) * rayPerDepth);
+        float stepEnd = distantTableDepth(frame, j, n) * rayPerDepth;
+        a = accumulateDistantPiece(a, dir, stepStart, stepEnd);
+        stepStart = stepEnd;
         int index = distantTableIndex(corners, c, j);
         distantTable[index] = vec4(a.scattering, 0.0f);
         distantTable[index + 1] = vec4(a.transmittance, 0.0f);
