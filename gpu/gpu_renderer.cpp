@@ -52,7 +52,8 @@ Result<void> GpuRenderer::State::createPasses() {
     for (const ImageDecl& d : kImages)
         if (!device->supportsFormat(vkFormat(d.format), storageAttachment))
             return Error{"The Vulkan device " + device->name() +
-                         " cannot use 32-bit float images as storage and render targets, which brume needs."};
+                         " cannot use 32-bit float and 16-bit normalized images as storage and render targets, "
+                         "which brume needs."};
     if (!device->storageImageExtendedFormats())
         return Error{"The Vulkan device " + device->name() +
                      " has no storage images in 16-bit normalized formats (shaderStorageImageExtendedFormats), "
