@@ -244,9 +244,15 @@ Result<void> Device::createLogicalDevice() {
     queue.queueFamilyIndex = queueFamily_;
     queue.queueCount = 1;
     queue.pQueuePriorities = &priority;
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(physical_, &supported);
+    VkPhysicalDeviceFeatures features{};
+    features.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
+    storageImageExtendedFormats_ = supported.shaderStorageImageExtendedFormats == VK_TRUE;
     VkDeviceCreateInfo info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    info.pEnabledFeatures = &features;
     const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
     if (surface_) {
         info.enabledExtensionCount = 1;

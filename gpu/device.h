@@ -64,6 +64,9 @@ public:
     double timestampPeriodNs() const { return timestampPeriodNs_; }
     uint32_t timestampValidBits() const { return timestampValidBits_; }
     const VkPhysicalDeviceLimits& limits() const { return limits_; }
+    // Whether storage images may use the extended formats (rgba16 for the integrated transmittance:
+    // shared/frame_table.h); enabled on the logical device when the device has the feature.
+    bool storageImageExtendedFormats() const { return storageImageExtendedFormats_; }
 
     // Debug names and labels are no-ops without VK_EXT_debug_utils.
     void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
@@ -101,6 +104,7 @@ private:
     uint32_t timestampValidBits_ = 0;
     VkPhysicalDeviceMemoryProperties memory_{};
     VkPhysicalDeviceLimits limits_{};
+    bool storageImageExtendedFormats_ = false;
 
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;

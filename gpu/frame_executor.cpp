@@ -280,6 +280,7 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
     for (const ImageDecl& d : kImages) {
         if (!(d.flags & image_flags::READBACK)) continue;
         if (res.volumeReadback.size() <= k) res.volumeReadback.emplace_back();
+        if (res.volumeReadbackFormat.size() <= k) res.volumeReadbackFormat.push_back(VK_FORMAT_UNDEFINED);
         bool unused = false;
         BRUME_TRY(ensureBuffer(res.volumeReadback[k++], bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::Readback,
                                (std::string(d.name) + " readback").c_str(), unused));
@@ -592,6 +593,7 @@ void GpuRenderer::State::recordReadback(bool readBackVolumes, int historyWriteIn
     size_t k = 0;
     for (const ImageDecl& d : kImages) {
         const Buffer* dst = nullptr;
+        const size_t volume = k;
         if ((d.flags & image_flags::OUTPUT) && readBackImage) dst = &res.outputReadback;
         if ((d.flags & image_flags::READBACK) && readBackVolumes) dst = &res.volumeReadback[k];
         if (d.flags & image_flags::READBACK) ++k;
@@ -601,6 +603,7 @@ void GpuRenderer::State::recordReadback(bool readBackVolumes, int historyWriteIn
         const GpuImage* src = &res[d.id];
         if (d.id == ImageId::sourceImage) src = &res.image(historyOut(HistoryId::historySource), historyWriteIndex);
         if (d.id == ImageId::mediaExtinction) src = &res.image(historyOut(HistoryId::historyExtinction), historyWriteIndex);
+        if (d.flags & image_flags::READBACK) res.volumeReadbackFormat[volume] = src->format;  // readVolume converts
         sources.push_back(src->image.get());
         if (src != &res[d.id]) kept.push_back(src->image.get());
         copies.push_back({src, dst});

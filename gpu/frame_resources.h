@@ -6,9 +6,9 @@
 //   previousFrame, history in -> temporal or integrate_rest -> history out (resolved S, sigma_t) -> integrate, glow
 //   geometry (raster) -> sceneColor, sceneDepth ------------------------------> composite -> outputImage
 //
-// Memory (rgba32f, 16 B per froxel per volume): 6 froxel volumes and 4 history volumes (temporal
-// ping-pong pairs of S and sigma_t); at 1280x720 High (160x90x96 froxels) that is 10 x 22 MiB =
-// 221 MiB, at Ultra (320x180x128) 10 x 113 MiB = 1.1 GiB.
+// Memory (rgba32f, 16 B per froxel per volume; the integrated transmittance rgba16, 8 B): 6 froxel
+// volumes and 4 history volumes (temporal ping-pong pairs of S and sigma_t); at 1280x720 High
+// (160x90x96 froxels) that is 9.5 x 22 MiB = 210 MiB, at Ultra (320x180x128) 9.5 x 113 MiB = 1.0 GiB.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -78,6 +78,7 @@ struct FrameResources {
     std::vector<std::shared_ptr<const DensityGrid>> vdbGridsUploaded;
     Buffer outputReadback;  // outputImage, every frame
     std::vector<Buffer> volumeReadback;  // the READBACK images, in table order, when asked for
+    std::vector<VkFormat> volumeReadbackFormat;  // the format of the image each one was copied from
 };
 
 }  // namespace brume::gpu

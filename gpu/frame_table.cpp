@@ -101,6 +101,7 @@ const std::array<PassDecl, 14> kPasses{{
 
 VkFormat vkFormat(ImageFormat f) {
     switch (f) {
+        case ImageFormat::rgba16: return VK_FORMAT_R16G16B16A16_UNORM;
         case ImageFormat::r32f: return VK_FORMAT_R32_SFLOAT;
         case ImageFormat::r32i: return VK_FORMAT_R32_SINT;
         case ImageFormat::rgba32i: return VK_FORMAT_R32G32B32A32_SINT;
@@ -110,7 +111,8 @@ VkFormat vkFormat(ImageFormat f) {
 }
 
 VkDeviceSize texelBytes(ImageFormat f) {
-    return f == ImageFormat::r32f || f == ImageFormat::r32i ? 4 : 16;
+    if (f == ImageFormat::r32f || f == ImageFormat::r32i) return 4;
+    return f == ImageFormat::rgba16 ? 8 : 16;
 }
 
 VkDescriptorType descriptorType(BufferKind k) {

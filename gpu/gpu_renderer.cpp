@@ -6,6 +6,7 @@
 #include <cstring>
 #include <tuple>
 #include <utility>
+#include <glm/gtc/type_precision.hpp>
 
 #include "core/clusters.h"
 #include "core/compile.h"
@@ -51,7 +52,12 @@ Result<void> GpuRenderer::State::createPasses() {
     for (const ImageDecl& d : kImages)
         if (!device->supportsFormat(vkFormat(d.format), storageAttachment))
             return Error{"The Vulkan device " + device->name() +
-                         " cannot use 32-bit float images as storage and render targets, which brume needs."};
+                         " cannot use 32-bit float and 16-bit normalized images as storage and render targets, "
+                         "which brume needs."};
+    if (!device->storageImageExtendedFormats())
+        return Error{"The Vulkan device " + device->name() +
+                     " has no storage images in 16-bit normalized formats (shaderStorageImageExtendedFormats), "
+                     "which brume needs."};
     if (!device->supportsFormat(VK_FORMAT_D32_SFLOAT, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT))
         return Error{"The Vulkan device " + device->name() + " has no 32-bit float depth buffer, which brume needs."};
     Result<DescriptorBindings> b = createDescriptorBindings(*device);
@@ -120,10 +126,17 @@ Result<void> checkLimits(const Device& device, int width, int height, glm::ivec3
     return {};
 }
 
-std::vector<glm::vec4> readVolume(const Buffer& b, glm::ivec3 dims) {
+// A froxel volume copied from an rgba32f image, or from an rgba16 one (unsigned normalized: k / 65535).
+std::vector<glm::vec4> readVolume(const Buffer& b, glm::ivec3 dims, VkFormat format) {
     const size_t n = static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * static_cast<size_t>(dims.z);
-    const auto* p = static_cast<const glm::vec4*>(b.mapped);
-    return std::vector<glm::vec4>(p, p + n);
+    if (format != VK_FORMAT_R16G16B16A16_UNORM) {
+        const auto* p = static_cast<const glm::vec4*>(b.mapped);
+        return std::vector<glm::vec4>(p, p + n);
+    }
+    const auto* p = static_cast<const glm::u16vec4*>(b.mapped);
+    std::vector<glm::vec4> out(n);
+    for (size_t i = 0; i < n; ++i) out[i] = glm::vec4(p[i]) / 65535.0f;
+    return out;
 }
 
 }  // namespace
@@ -407,7 +420,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         // The READBACK images of the table, in its order.
         const std::array<std::vector<glm::vec4>*, 6> dst{&v.mediaScatteringG, &v.mediaExtinction, &v.mediaEmission,
                                                           &v.source, &v.integratedScattering, &v.integratedTransmittance};
-        for (size_t i = 0; i < dst.size() && i < r.volumeReadback.size(); ++i) *dst[i] = readVolume(r.volumeReadback[i], dims);
+        for (size_t i = 0; i < dst.size() && i < r.volumeReadback.size(); ++i) *dst[i] = readVolume(r.volumeReadback[i], dims, r.volumeReadbackFormat[i]);
         v.litFroxels = out.litFroxels;
         v.skippedFroxels = out.skippedFroxels;
         v.overfullClusters = out.overfullClusters;

@@ -101,7 +101,7 @@
     X(mediaEmission, 12, rgba32f, image3D, FRAME_READBACK) \
     X(sourceImage, 13, rgba32f, image3D, FRAME_READBACK) \
     X(integratedScattering, 14, rgba32f, image3D, FRAME_READBACK) \
-    X(integratedTransmittance, 15, rgba32f, image3D, FRAME_READBACK) \
+    X(integratedTransmittance, 15, rgba16, image3D, FRAME_READBACK) \
     X(sceneColor, 16, rgba32f, image2D, TARGET) \
     X(sceneDepth, 17, r32f, image2D, TARGET) \
     X(outputImage, 18, rgba32f, image2D, FRAME_OUTPUT)
@@ -113,6 +113,10 @@
 //   sourceImage            rgb source S                         (light; temporal resolves it)
 //   integratedScattering   camera -> far side of each slice     (integrate)
 //   integratedTransmittance                                     (integrate)
+//                          in [0, 1], 16-bit unsigned normalized: rounded by at most 0.5 / 65535 (7.6e-6)
+//                          absolute, 0 and 1 exact. Half the bytes and half the lane-by-lane store loops of
+//                          rgba32f on lavapipe (docs/performance.md, "froxel"); half floats (2.4e-4
+//                          relative) made brume tradeoff's errors worse
 //   sceneColor             shaded surfaces / sky radiance       (geometry)
 //   sceneDepth             view depth [m], camera far = sky     (geometry)
 //   outputImage            the composited image                 (composite, debug view)
