@@ -287,6 +287,72 @@ TEST(FogShadowVolume, ConvergesToTheExactTransmittanceAsTheReductionGoesToOne) {
     }
 }
 
+// A froxel on a cell (every r-th froxel along each axis: weights 0, 0, 0) reads that cell's value, the
+// exact transmittance at its own sample point, so shadowBlend trusts it even where the 8 cells
+// disagree (shadow_volume.h shadowOnCell): the exact fallback would compute the same value bit for
+// bit. The froxels next to it (weight 1/r along one axis) are still judged by their 8 cells. The
+// box-over-ground scene with a point light inside the box has disagreeing cells around froxels on
+// cells (counted, so the test sees the case); trusting them without the value being the exact one,
+// or leaving them untrusted, fails it.
+TEST(FogShadowVolume, AFroxelOnACellIsTrustedAndExact) {
+    Scene scene = boxOverGround();
+    Light point = makeLight(LightType::Point);
+    point.position = {1.0f, 3.2f, 0.5f};
+    point.intensity = 6.0f;
+    point.range = 8.0f;
+    scene.lights.push_back(point);
+    const CompiledScene cs = compileScene(scene);
+    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::High);
+    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, 96, 54, fs);
+    frame.localFogShadows = 1;
+    for (int r : {2, 4}) {
+        frame.shadowReduction = r;
+        const ShadowVolume sv = computeShadowVolume(cs, frame, r, 2);
+        const glm::ivec3 dims(frame.froxelDims);
+        int onCellDisagreeing = 0, nextToCellUntrusted = 0;
+        for (int z = 0; z < dims.z; ++z)
+            for (int y = 0; y < dims.y; y += r)
+                for (int x = 0; x < dims.x; x += r) {
+                    const shd::ShadowLookup k = shd::shadowLookup(glm::ivec3(x, y, z), dims, r);
+                    const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(x, y, z) + glm::vec3(frame.jitter), frame);
+                    for (size_t li = 0; li < cs.lights.size(); ++li) {
+                        auto at = [&](int cx, int cy, int cz) {
+                            const glm::ivec3 c(cx ? k.upper.x : k.cell.x, cy ? k.upper.y : k.cell.y,
+                                               cz ? k.upper.z : k.cell.z);
+                            return glm::vec3(sv.transmittance[static_cast<size_t>(
+                                shd::shadowVolumeIndex(sv.dims, static_cast<int>(li), c))]);
+                        };
+                        const shd::ShadowBlend b = shd::shadowBlend(at(0, 0, 0), at(1, 0, 0), at(0, 1, 0), at(1, 1, 0),
+                                                                    at(0, 0, 1), at(1, 0, 1), at(0, 1, 1), at(1, 1, 1),
+                                                                    k.weights);
+                        glm::vec3 lo = at(0, 0, 0), hi = lo;
+                        for (int c = 1; c < 8; ++c) {
+                            lo = glm::min(lo, at(c & 1, (c >> 1) & 1, c >> 2));
+                            hi = glm::max(hi, at(c & 1, (c >> 1) & 1, c >> 2));
+                        }
+                        const glm::vec3 spread = hi - lo;
+                        const bool agree = std::max(spread.x, std::max(spread.y, spread.z)) <= shd::SHADOW_VOLUME_SPREAD;
+                        if (z % r != 0) {  // next to a cell along z: the 8 cells decide
+                            EXPECT_EQ(b.trusted, agree);
+                            nextToCellUntrusted += agree ? 0 : 1;
+                            continue;
+                        }
+                        onCellDisagreeing += agree ? 0 : 1;
+                        EXPECT_TRUE(b.trusted);
+                        const shd::LightSample ls = shd::evalLight(cs.lights[li], p);
+                        const glm::vec3 exact = lightFogTransmittance(cs, cs.lights[li], p, ls.toLight, ls.distance, 1);
+                        EXPECT_EQ(b.transmittance.x, exact.x);
+                        EXPECT_EQ(b.transmittance.y, exact.y);
+                        EXPECT_EQ(b.transmittance.z, exact.z);
+                    }
+                }
+        std::printf("r=%d: %d (froxel on a cell, light) pairs with disagreeing cells, %d untrusted next to a cell\n", r,
+                    onCellDisagreeing, nextToCellUntrusted);
+        EXPECT_GT(onCellDisagreeing, 0);
+        EXPECT_GT(nextToCellUntrusted, 0);
+    }
+}
+
 namespace {
 
 // Dense midpoint integral, in double, of a box volume's density along o + s d over s in [0, maxDist]:

@@ -1,9 +1,10 @@
 // The fog transmittance volume: each shadowing light's transmittance (shadows.h) evaluated exactly
 // on a grid that keeps every r-th froxel in each axis (r = FrameUniforms.shadowReduction, per preset), then
 // read back by the light pass with trilinear weights. Where the 8 cells around a froxel disagree by
-// more than SHADOW_VOLUME_SPREAD (a shadow edge crosses them), the interpolation is not trusted and
-// the froxel evaluates its transmittance exactly: smooth regions cost 1/r^3 of the closed forms,
-// edges stay exact, and no light leaks through a dense block's shadow (docs/shadows.md, "Cost").
+// more than SHADOW_VOLUME_SPREAD (a shadow edge crosses them) and the froxel is not on a cell, the
+// interpolation is not trusted and the froxel evaluates its transmittance exactly: smooth regions
+// cost 1/r^3 of the closed forms, edges stay exact, and no light leaks through a dense block's
+// shadow (docs/shadows.md, "Cost").
 //
 // Cell c of axis a samples froxel min(c * r, dims - 1) at the frame's jitter, so every cell sits on
 // a froxel's own sample point: at r = 1 the volume is the exact transmittance, and so is every
@@ -110,7 +111,8 @@ BRUME_FUNC ShadowLevel shadowLevel(vec3 c00, vec3 c01, vec3 c10, vec3 c11, vec2 
     return l;
 }
 
-// The blend between the lower and upper levels, trusted where the 8 cells agree.
+// The blend between the lower and upper levels, trusted where the 8 cells agree (shadowBlend's
+// callers add shadowOnCell).
 BRUME_FUNC ShadowBlend shadowBlendLevels(ShadowLevel lower, ShadowLevel upper, float wz) {
     vec3 spread = max(lower.hi, upper.hi) - min(lower.lo, upper.lo);
     ShadowBlend b;
@@ -119,10 +121,21 @@ BRUME_FUNC ShadowBlend shadowBlendLevels(ShadowLevel lower, ShadowLevel upper, f
     return b;
 }
 
+// Whether a lookup's froxel sits on its lower cell (weight 0 along all three axes: every r-th froxel
+// per axis, 1/8 of them at r = 2). Its blend is then that cell's value, and the cell holds the
+// exact transmittance at this froxel's own sample point (shadowCellFroxel: the shadow volume pass
+// evaluates the same closed form at the same point), so the blend is trusted whatever the other
+// cells hold: the exact fallback would compute the same value again. 12.5% of the default scene's
+// exact froxels at high were such (docs/performance.md, "light, sixth round").
+BRUME_FUNC bool shadowOnCell(vec3 w) { return w.x == 0.0f && w.y == 0.0f && w.z == 0.0f; }
+
+// The blend of the 8 cells with weights w, trusted where they agree or the froxel is on a cell.
 BRUME_FUNC ShadowBlend shadowBlend(vec3 c000, vec3 c001, vec3 c010, vec3 c011, vec3 c100, vec3 c101, vec3 c110,
                                    vec3 c111, vec3 w) {
-    return shadowBlendLevels(shadowLevel(c000, c001, c010, c011, vec2(w)), shadowLevel(c100, c101, c110, c111, vec2(w)),
-                             w.z);
+    ShadowBlend b = shadowBlendLevels(shadowLevel(c000, c001, c010, c011, vec2(w)),
+                                      shadowLevel(c100, c101, c110, c111, vec2(w)), w.z);
+    b.trusted = b.trusted || shadowOnCell(w);
+    return b;
 }
 
 BRUME_NAMESPACE_END
