@@ -248,6 +248,25 @@ float worstBlendError(const CompiledScene& cs, shd::FrameUniforms frame, int red
     return worst;
 }
 
+// boxOverGround with a point light inside the box: its transmittance varies everywhere, and shadow
+// volume cells disagree around many froxels.
+Scene boxOverGroundLitInside() {
+    Scene scene = boxOverGround();
+    Light point = makeLight(LightType::Point);
+    point.position = {1.0f, 3.2f, 0.5f};
+    point.intensity = 6.0f;
+    point.range = 8.0f;
+    scene.lights.push_back(point);
+    return scene;
+}
+
+// The scene's frame at 96x54 `high`, with the point lights' fog shadows on.
+shd::FrameUniforms highFrame(const Scene& scene, const CompiledScene& cs) {
+    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, 96, 54, resolveFroxelSettings(scene, Quality::High));
+    frame.localFogShadows = 1;
+    return frame;
+}
+
 }  // namespace
 
 // The reduced-resolution transmittance volume converges to the exact transmittance as the reduction
@@ -256,16 +275,9 @@ float worstBlendError(const CompiledScene& cs, shd::FrameUniforms frame, int red
 // less and less from the all-exact one. A volume sampled at the wrong froxel, a wrong weight or a
 // swapped corner breaks r = 1 or the ordering.
 TEST(FogShadowVolume, ConvergesToTheExactTransmittanceAsTheReductionGoesToOne) {
-    Scene scene = boxOverGround();
-    Light point = makeLight(LightType::Point);
-    point.position = {1.0f, 3.2f, 0.5f};  // inside the box: its transmittance varies everywhere
-    point.intensity = 6.0f;
-    point.range = 8.0f;
-    scene.lights.push_back(point);
+    const Scene scene = boxOverGroundLitInside();
     const CompiledScene cs = compileScene(scene);
-    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::High);
-    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, 96, 54, fs);
-    frame.localFogShadows = 1;
+    shd::FrameUniforms frame = highFrame(scene, cs);
     const float e4 = worstBlendError(cs, frame, 4), e2 = worstBlendError(cs, frame, 2),
                 e1 = worstBlendError(cs, frame, 1);
     std::printf("worst |T_volume - T_exact| (raw blend): r=4 %.4f, r=2 %.4f, r=1 %.2e\n", e4, e2, e1);
@@ -295,16 +307,9 @@ TEST(FogShadowVolume, ConvergesToTheExactTransmittanceAsTheReductionGoesToOne) {
 // cells (counted, so the test sees the case); trusting them without the value being the exact one,
 // or leaving them untrusted, fails it.
 TEST(FogShadowVolume, AFroxelOnACellIsTrustedAndExact) {
-    Scene scene = boxOverGround();
-    Light point = makeLight(LightType::Point);
-    point.position = {1.0f, 3.2f, 0.5f};
-    point.intensity = 6.0f;
-    point.range = 8.0f;
-    scene.lights.push_back(point);
+    const Scene scene = boxOverGroundLitInside();
     const CompiledScene cs = compileScene(scene);
-    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::High);
-    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, 96, 54, fs);
-    frame.localFogShadows = 1;
+    shd::FrameUniforms frame = highFrame(scene, cs);
     for (int r : {2, 4}) {
         frame.shadowReduction = r;
         const ShadowVolume sv = computeShadowVolume(cs, frame, r, 2);
