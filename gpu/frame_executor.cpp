@@ -340,7 +340,10 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(c.x * c.y * c.z) + 3 +
                                3 * cs.lights.size();
     BRUME_TRY(ensureBuffer(BufferId::lightClusters, clusterInts * sizeof(int), dirty));
-    BRUME_TRY(ensureBuffer(BufferId::sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>(sunShadowBytes, 4), dirty));
+    // Whole rgba32f texels: its readers go through the texel view sunShadowTexels (shared/frame_table.h).
+    static_assert(sizeof(shd::SunShadowFit) == 16 * shd::SUN_SHADOW_FIT_TEXELS);
+    BRUME_TRY(ensureBuffer(BufferId::sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>((sunShadowBytes + 15) / 16 * 16, 16),
+                           dirty));
     BRUME_TRY(ensureBuffer(BufferId::localShadowMaps, std::max<size_t>(localShadowBytes, 4), dirty));
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,

@@ -27,7 +27,7 @@ const std::array<PassDecl, 14> kPasses{{
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
     // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::SurfacesChanged, Record::Geometry,
-     {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap, B::localShadowMaps,
+     {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels, B::localShadowMaps,
       T::volumeTexels},
      {I::sceneColor, I::sceneDepth}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
@@ -39,12 +39,12 @@ const std::array<PassDecl, 14> kPasses{{
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     {"light", "light", Variant::Shapes, Dispatch::MediaRuns, When::Always, Record::Dispatch,
-     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap,
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       B::localShadowMaps, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
      {I::sourceImage, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::Shapes, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
-     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, B::sunShadowMap,
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       B::localShadowMaps, I::mediaScatteringG, I::mediaEmission, B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region

@@ -80,6 +80,8 @@
 //   volumeTexels        volumes as rgba32i texels, VOLUME_DATA_TEXELS per VolumeData (resources.glsl
 //                       volumeAt): voxelize's and the closed forms' reads of the volumes (light
 //                       exact, geometry, shadow volume, distant fog)
+//   sunShadowTexels     sunShadowMap as rgba32f texels: the fit's SUN_SHADOW_FIT_TEXELS vec4s, then the
+//                       depths 4 to a texel (sun_shadow.glsl): the light passes' and the surfaces' reads
 // Which passes read a buffer through its views is a define per shader (resources.glsl); a pass reads
 // a buffer through its views or through the buffer, not both (docs/performance.md, "light3").
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
@@ -87,7 +89,8 @@
     X(lightClusterTexels, 27, lightClusters, r32i) \
     X(lightTexels, 28, lights, rgba32i) \
     X(distantTexels, 29, distantTable, rgba32f) \
-    X(volumeTexels, 30, volumes, rgba32i)
+    X(volumeTexels, 30, volumes, rgba32i) \
+    X(sunShadowTexels, 34, sunShadowMap, rgba32f)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

@@ -42,6 +42,10 @@ struct SunShadowFit {
     vec4 dir;           // xyz: unit direction the light travels (depth axis)
 };
 
+// The fit's size in vec4s: the GPU reads the map's buffer (the fit, then the depths) through an
+// rgba32f texel view (shared/frame_table.h sunShadowTexels), the depths starting at this texel.
+BRUME_CONST int SUN_SHADOW_FIT_TEXELS = 4;
+
 // The fit for light l (directional) and frame f.
 BRUME_FUNC SunShadowFit fitSunShadow(FrameUniforms f, LightData l, int resolution) {
     float farD = f.froxelRange.y;
