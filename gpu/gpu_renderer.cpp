@@ -171,6 +171,7 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     bool emits = false;  // influencers scale emission, never create it (shared/influence.h)
     for (const shd::VolumeData& v : cs.volumes) emits = emits || glm::vec3(v.emission) != glm::vec3(0.0f);
     k[SpecId::SPEC_EMISSION] = emits ? 1 : 0;
+    static_assert(SPEC_MAX_LISTED_VOLUMES == 10, "BRUME_EACH_LISTED_VOLUME (specialization.h) expands 10 volumes");
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;
         for (size_t i = 0; i < cs.volumes.size(); ++i)

@@ -36,9 +36,7 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
     if (SPEC_VOLUME_COUNT >= 0) {
 #define BRUME_DISTANT_VOLUME(i) \
     if (i < SPEC_VOLUME_COUNT) seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, dir, s0, s1), frame.ambient.rgb);
-        BRUME_DISTANT_VOLUME(0) BRUME_DISTANT_VOLUME(1) BRUME_DISTANT_VOLUME(2) BRUME_DISTANT_VOLUME(3)
-        BRUME_DISTANT_VOLUME(4) BRUME_DISTANT_VOLUME(5) BRUME_DISTANT_VOLUME(6) BRUME_DISTANT_VOLUME(7)
-        BRUME_DISTANT_VOLUME(8) BRUME_DISTANT_VOLUME(9)
+        BRUME_EACH_LISTED_VOLUME(BRUME_DISTANT_VOLUME)
 #undef BRUME_DISTANT_VOLUME
     } else {
         for (int i = 0; i < frame.counts.z; ++i)
@@ -60,9 +58,7 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
     if (i < SPEC_VOLUME_COUNT)                                                                                   \
         seg = addDistantLight(seg, volumeAt(i), pieceLength(i, dir, s0, s1),                                     \
                               distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
-            BRUME_DISTANT_LIGHT(0) BRUME_DISTANT_LIGHT(1) BRUME_DISTANT_LIGHT(2) BRUME_DISTANT_LIGHT(3)
-            BRUME_DISTANT_LIGHT(4) BRUME_DISTANT_LIGHT(5) BRUME_DISTANT_LIGHT(6) BRUME_DISTANT_LIGHT(7)
-            BRUME_DISTANT_LIGHT(8) BRUME_DISTANT_LIGHT(9)
+            BRUME_EACH_LISTED_VOLUME(BRUME_DISTANT_LIGHT)
 #undef BRUME_DISTANT_LIGHT
         } else {
             for (int i = 0; i < frame.counts.z; ++i)

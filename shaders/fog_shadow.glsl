@@ -15,9 +15,7 @@ vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
         // built for it (a loop would run every kind's code for every volume on lavapipe).
 #define BRUME_LISTED_VOLUME(i) \
     if (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumeAt(i), p, toLight, distance);
-        BRUME_LISTED_VOLUME(0) BRUME_LISTED_VOLUME(1) BRUME_LISTED_VOLUME(2) BRUME_LISTED_VOLUME(3)
-        BRUME_LISTED_VOLUME(4) BRUME_LISTED_VOLUME(5) BRUME_LISTED_VOLUME(6) BRUME_LISTED_VOLUME(7)
-        BRUME_LISTED_VOLUME(8) BRUME_LISTED_VOLUME(9)
+        BRUME_EACH_LISTED_VOLUME(BRUME_LISTED_VOLUME)
 #undef BRUME_LISTED_VOLUME
     } else {
         for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumeAt(i), p, toLight, distance);

@@ -210,8 +210,8 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
             if (inScatter == vec3(0.0f)) continue;
             ShadowLevel lower = pickLevel(level[j], l0, l1, l2, l3, l4);
             ShadowLevel upper = pickLevel(level[j] + 1, l0, l1, l2, l3, l4);
-            ShadowBlend b = shadowBlendLevels(lower, upper, shadow[j].weights.z);
-            bool trusted = !shadows || b.trusted || shadowOnCell(shadow[j].weights);
+            ShadowBlend b = shadowBlendLevels(lower, upper, shadow[j].weights);
+            bool trusted = !shadows || b.trusted;
             vec3 transmittance = shadows ? b.transmittance * vdbShadowBlend(i, shadow[j]) : vec3(1.0f);
             perSigmaS[j] += inScatter * transmittance * lightMapVisibility(i, p[j], sun[j]);
             exact[j] = exact[j] || !trusted;

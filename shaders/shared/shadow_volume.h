@@ -111,15 +111,6 @@ BRUME_FUNC ShadowLevel shadowLevel(vec3 c00, vec3 c01, vec3 c10, vec3 c11, vec2 
     return l;
 }
 
-// The blend between the lower and upper levels, trusted where the 8 cells agree (shadowBlend's
-// callers add shadowOnCell).
-BRUME_FUNC ShadowBlend shadowBlendLevels(ShadowLevel lower, ShadowLevel upper, float wz) {
-    vec3 spread = max(lower.hi, upper.hi) - min(lower.lo, upper.lo);
-    ShadowBlend b;
-    b.trusted = max(spread.x, max(spread.y, spread.z)) <= SHADOW_VOLUME_SPREAD;
-    b.transmittance = mix(lower.blend, upper.blend, wz);
-    return b;
-}
 
 // Whether a lookup's froxel sits on its lower cell (weight 0 along all three axes: every r-th froxel
 // per axis, 1/8 of them at r = 2). Its blend is then that cell's value, and the cell holds the
@@ -129,13 +120,21 @@ BRUME_FUNC ShadowBlend shadowBlendLevels(ShadowLevel lower, ShadowLevel upper, f
 // exact froxels at high were such (docs/performance.md, "light, sixth round").
 BRUME_FUNC bool shadowOnCell(vec3 w) { return w.x == 0.0f && w.y == 0.0f && w.z == 0.0f; }
 
+// The blend between a lookup's lower and upper levels (weights w: the levels' own bilinear ones and
+// w.z between them), trusted where the 8 cells agree or the froxel is on a cell.
+BRUME_FUNC ShadowBlend shadowBlendLevels(ShadowLevel lower, ShadowLevel upper, vec3 w) {
+    vec3 spread = max(lower.hi, upper.hi) - min(lower.lo, upper.lo);
+    ShadowBlend b;
+    b.trusted = max(spread.x, max(spread.y, spread.z)) <= SHADOW_VOLUME_SPREAD || shadowOnCell(w);
+    b.transmittance = mix(lower.blend, upper.blend, w.z);
+    return b;
+}
+
 // The blend of the 8 cells with weights w, trusted where they agree or the froxel is on a cell.
 BRUME_FUNC ShadowBlend shadowBlend(vec3 c000, vec3 c001, vec3 c010, vec3 c011, vec3 c100, vec3 c101, vec3 c110,
                                    vec3 c111, vec3 w) {
-    ShadowBlend b = shadowBlendLevels(shadowLevel(c000, c001, c010, c011, vec2(w)),
-                                      shadowLevel(c100, c101, c110, c111, vec2(w)), w.z);
-    b.trusted = b.trusted || shadowOnCell(w);
-    return b;
+    return shadowBlendLevels(shadowLevel(c000, c001, c010, c011, vec2(w)), shadowLevel(c100, c101, c110, c111, vec2(w)),
+                             w);
 }
 
 BRUME_NAMESPACE_END

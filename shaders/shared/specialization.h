@@ -27,6 +27,10 @@
 #define SPEC_MAX_LISTED_VOLUMES 10
 #define BRUME_SPEC_VOLUME_LIST_ENTRY(i, kind) ((kind) << (3 * (i)))
 #define BRUME_SPEC_LISTED_KIND(list, i) (((list) >> (3 * (i))) & 7)
+// M(0) ... M(SPEC_MAX_LISTED_VOLUMES - 1): the shaders' loops over the listed volumes, unrolled so that
+// each volume's index, and so its kind, is a constant (fog_shadow.glsl, voxelize_body.glsl,
+// distant_fog.comp; each body tests i < SPEC_VOLUME_COUNT).
+#define BRUME_EACH_LISTED_VOLUME(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7) M(8) M(9)
 // In the froxel passes' list only (gpu: RendererState::froxelSpec): volume i is out of their reach this
 // frame (core/media_region.h froxelVolumesInReach), its terms are exactly 0 and are left out.
 #define SPEC_CULLED_VOLUME 7
