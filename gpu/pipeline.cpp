@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <vector>
@@ -132,8 +137,44 @@ void writeHistoryBindings(const Device& device, VkDescriptorSet set, const Frame
     vkUpdateDescriptorSets(device.vk(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
+namespace {
+
+// Profiling aid (docs/performance.md "How to measure"): with BRUME_SPV_DIR set, a file DIR/NAME.spv
+// replaces the embedded SPIR-V of shader NAME, so a pass can be timed with parts of its shader switched
+// off without rebuilding brume. Said on stderr for every shader it replaces, so that no image is taken
+// from a replaced shader unnoticed. Returns false where no replacement applies.
+bool replacementSpirv(const char* name, std::vector<uint32_t>& words, std::string& problem) {
+    const char* dir = std::getenv("BRUME_SPV_DIR");
+    if (!dir || !*dir) return false;
+    const std::filesystem::path path = std::filesystem::path(dir) / (std::string(name) + ".spv");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) {
+        problem = path.string() + ": cannot read the replacement shader (BRUME_SPV_DIR).";
+        return true;
+    }
+    if (bytes.empty() || bytes.size() % sizeof(uint32_t) != 0) {
+        problem = path.string() + ": not SPIR-V (its size is not a whole number of 32-bit words).";
+        return true;
+    }
+    words.resize(bytes.size() / sizeof(uint32_t));
+    std::copy(bytes.begin(), bytes.end(), reinterpret_cast<char*>(words.data()));
+    std::fprintf(stderr, "brume: shader %s replaced by %s (BRUME_SPV_DIR)\n", name, path.string().c_str());
+    return true;
+}
+
+}  // namespace
+
 Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* name) {
-    const std::span<const uint32_t> words = embeddedSpirv(name);
+    std::span<const uint32_t> words = embeddedSpirv(name);
+    std::vector<uint32_t> replaced;
+    std::string problem;
+    if (replacementSpirv(name, replaced, problem)) {
+        if (!problem.empty()) return Error{problem};
+        words = replaced;
+    }
     if (words.empty()) return Error{std::string("The shader ") + name + " is missing from this build of brume."};
     VkShaderModuleCreateInfo info = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     info.codeSize = words.size_bytes();

@@ -108,6 +108,33 @@ TEST_F(Cli, RenderPngWithEachRenderer) {
     }
 }
 
+// BRUME_SPV_DIR (gpu/pipeline.cpp, docs/performance.md "How to measure") swaps a shader for profiling:
+// every swap is said on stderr, an unchanged copy renders the same image, a file that is not SPIR-V is
+// one sentence naming it, and no image is written.
+TEST_F(Cli, ReplacedShadersAreSaidAndABrokenOneNamesItsFile) {
+    if (!brume::test::kGpuBuilt) GTEST_SKIP() << "the GPU renderer is not built";
+    const fs::path built = fs::path(BRUME_BINARY_DIR) / "shaders" / "geometry.frag.spv";
+    ASSERT_TRUE(fs::exists(built)) << built;
+    fs::create_directories(dir_ / "same");
+    fs::copy_file(built, dir_ / "same" / "geometry.frag.spv");
+    writeText(dir_ / "bad" / "geometry.frag.spv", "abc");
+    const std::string render = "render " + quoted(kDefaultScene) + kSmall;
+    const CliRun plain = brume(render + " -o plain.exr");
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_EQ(plain.err.find("BRUME_SPV_DIR"), std::string::npos) << plain.err;
+    ::setenv("BRUME_SPV_DIR", (dir_ / "same").string().c_str(), 1);
+    const CliRun same = brume(render + " -o same.exr");
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    EXPECT_NE(same.err.find("shader geometry.frag replaced by"), std::string::npos) << same.err;
+    EXPECT_EQ(readText(dir_ / "work" / "plain.exr"), readText(dir_ / "work" / "same.exr"));
+    ::setenv("BRUME_SPV_DIR", (dir_ / "bad").string().c_str(), 1);
+    const CliRun bad = brume(render + " -o bad.exr");
+    ::unsetenv("BRUME_SPV_DIR");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find((dir_ / "bad" / "geometry.frag.spv").string() + ": not SPIR-V"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(dir_ / "work" / "bad.exr"));
+}
+
 TEST_F(Cli, RenderExrIsFiniteAndNotBlack) {
     for (const std::string renderer : {" --cpu", " --reference"}) {
         const CliRun r = brume("render " + quoted(kDefaultScene) + " -o fog.EXR" + kSmall + renderer);
