@@ -171,6 +171,18 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     bool emits = false;  // influencers scale emission, never create it (shared/influence.h)
     for (const shd::VolumeData& v : cs.volumes) emits = emits || glm::vec3(v.emission) != glm::vec3(0.0f);
     k[SpecId::SPEC_EMISSION] = emits ? 1 : 0;
+    // Grey fog shadows: every closed-form volume's sigma_t (as the shaders add it, sigma_s + sigma_a)
+    // has three equal channels, so the optical depth toward a light does too, and one exp gives the
+    // same transmittance as three (fog_shadow.glsl transmittanceOfDepth). Depth and vdb volumes add
+    // nothing to it (shared/shadows.h).
+    bool grey = true;
+    for (const shd::VolumeData& v : cs.volumes) {
+        const bool closedForm = v.kind.x == shd::VOLUME_BOX || v.kind.x == shd::VOLUME_HEIGHT_EXPONENTIAL ||
+                                v.kind.x == shd::VOLUME_HEIGHT_LINEAR;
+        const glm::vec3 sigmaT = glm::vec3(v.sigmaS_g) + glm::vec3(v.sigmaA);
+        grey = grey && (!closedForm || (sigmaT.x == sigmaT.y && sigmaT.y == sigmaT.z));
+    }
+    k[SpecId::SPEC_GREY_FOG_SHADOWS] = grey ? 1 : 0;
     static_assert(SPEC_MAX_LISTED_VOLUMES == 10, "BRUME_EACH_LISTED_VOLUME (specialization.h) expands 10 volumes");
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;

@@ -7,20 +7,52 @@ int localFogShadowsFlag() { return SPEC_LOCAL_FOG_SHADOWS != 0 ? frame.localFogS
 // Volume i's kind in a pipeline specialized with the scene's volume list (SPEC_VOLUME_COUNT >= 0).
 int listedVolumeKind(int i) { return BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i); }
 
-vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
+// Whether listed volume i takes part in the closed forms (a constant once specialized).
+#define BRUME_FOG_VOLUME_LISTED(i) (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME)
+
+// The listed volumes' data, fetched once by an invocation that evaluates the transmittance toward
+// several lights (or at several points): lavapipe gathers a volume's texels lane by lane on every
+// fetch, and fetched inside the light loop they were gathered once per light (docs/performance.md,
+// "hoist"). Members of volumes not listed are left unset and never read. Unused without the list
+// (SPEC_VOLUME_COUNT < 0: lightFogTransmittance then reads every volume itself).
+#define BRUME_FOG_VOLUME_MEMBER(i) VolumeData v##i;
+struct FogVolumes {
+    BRUME_EACH_LISTED_VOLUME(BRUME_FOG_VOLUME_MEMBER)
+};
+#undef BRUME_FOG_VOLUME_MEMBER
+
+FogVolumes fogVolumes() {
+    FogVolumes f;
+#define BRUME_FETCH_FOG_VOLUME(i) if (BRUME_FOG_VOLUME_LISTED(i)) f.v##i = volumeAt(i);
+    BRUME_EACH_LISTED_VOLUME(BRUME_FETCH_FOG_VOLUME)
+#undef BRUME_FETCH_FOG_VOLUME
+    return f;
+}
+
+// exp(-tau) per channel; one exp where the pipeline knows every volume's sigma_t is grey
+// (SPEC_GREY_FOG_SHADOWS), so that tau's three channels are the same float: the same values.
+vec3 transmittanceOfDepth(vec3 tau) { return SPEC_GREY_FOG_SHADOWS != 0 ? vec3(exp(-tau.x)) : exp(-tau); }
+
+// vs: fogVolumes(), fetched by the caller once for all its lights.
+vec3 lightFogTransmittance(FogVolumes vs, LightData l, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(l, localFogShadowsFlag())) return vec3(1.0f);
     vec3 tau = vec3(0.0f);
     if (SPEC_VOLUME_COUNT >= 0) {
         // Unrolled by hand with each volume's kind a constant: only that kind's closed form is
         // built for it (a loop would run every kind's code for every volume on lavapipe).
 #define BRUME_LISTED_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), volumeAt(i), p, toLight, distance);
+    if (BRUME_FOG_VOLUME_LISTED(i)) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), vs.v##i, p, toLight, distance);
         BRUME_EACH_LISTED_VOLUME(BRUME_LISTED_VOLUME)
 #undef BRUME_LISTED_VOLUME
     } else {
         for (int i = 0; i < frame.counts.z; ++i) tau += shadowOpticalDepth(volumeAt(i), p, toLight, distance);
     }
-    return exp(-tau);
+    return transmittanceOfDepth(tau);
+}
+
+// The same for a caller that evaluates one transmittance (the volumes fetched here).
+vec3 lightFogTransmittance(LightData l, vec3 p, vec3 toLight, float distance) {
+    return lightFogTransmittance(fogVolumes(), l, p, toLight, distance);
 }
 
 // Entry i of the fog transmittance volume, read through its texel view (shared/frame_table.h
@@ -89,8 +121,9 @@ vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, flo
 // blend. Not the volume's blend with the exact fallback: lavapipe runs both sides of that branch, so
 // the blend only added its 8 loads to the exact form's cost (docs/performance.md, "perfgeo").
 // s: shadowLookupAt of p, computed once for all lights (the vdb layer's lookup).
-vec3 surfaceFogTransmittance(int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
+// vs: fogVolumes(), fetched once per fragment.
+vec3 surfaceFogTransmittance(FogVolumes vs, int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
-    return lightFogTransmittance(lightAt(light), p, toLight, distance) * vdb;
+    return lightFogTransmittance(vs, lightAt(light), p, toLight, distance) * vdb;
 }

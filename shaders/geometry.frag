@@ -51,6 +51,8 @@ void main() {
     // The sun shadow map serves one light (frame.sunShadowLight): looked up once, not in every trip of
     // the light loop (lavapipe runs the lookup for every light, mapped or not: docs/performance.md).
     int sunLight = frame.sunShadowLight - 1;
+    // The volumes of the fog transmittance, fetched once for every light (fog_shadow.glsl fogVolumes).
+    FogVolumes volumes = fogVolumes();
     float sunVisibility = sunShadowVisibility(sunLight, origin);
     // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
     int reach = lightReachOffset(frame.froxelDims.xyz);
@@ -60,7 +62,7 @@ void main() {
         LightSample ls = evalLight(lightAt(i), worldPos);
         vec3 direct = lambert(albedo, n, ls);
         if (direct == vec3(0.0f)) continue;
-        radiance += direct * surfaceFogTransmittance(i, shadow, origin, ls.toLight, ls.distance) *
+        radiance += direct * surfaceFogTransmittance(volumes, i, shadow, origin, ls.toLight, ls.distance) *
                     (i == sunLight ? sunVisibility : 1.0f) * localShadowVisibility(i, origin);
     }
     outRadiance = vec4(radiance, 1.0f);

@@ -372,6 +372,40 @@ TEST_F(GpuTest, EmissionLeftOutWhenNoVolumeEmitsLeavesNoEmissionFromAnEarlierSce
     EXPECT_EQ(emittingFroxels(), 0u);
 }
 
+// The fog's transmittance toward the lights takes one exp instead of three where every closed-form
+// volume's sigma_s + sigma_a is grey (SPEC_GREY_FOG_SHADOWS, fog_shadow.glsl transmittanceOfDepth):
+// the surfaces and froxels in a dense box's shadow match the CPU (which takes three) far tighter than
+// the 1% tolerance, whether sigma_t is grey, grey only as a sum of coloured sigma_s and sigma_a (exact
+// binary fractions, so the sums are equal floats), or coloured (three exps). A grey rule that took a
+// coloured sigma_t for grey would tint the shadows by exp(-1.5 x chord).
+TEST_F(GpuTest, GreyAndColouredFogShadowsMatchCpuClosely) {
+    Scene s = baseScene();
+    Volume dense = box();
+    dense.edge_fade = 0.1f;
+    s.volumes = {dense, height(HeightProfile::Exponential)};
+    s.volumes[1].medium.scattering = glm::vec3(0.125f);
+    s.lights = {sun(), pointLight({1.5f, 0.6f, 1.5f}, {1.0f, 0.8f, 0.6f})};
+    s.geometry = ground();
+    struct Case {
+        const char* what;
+        glm::vec3 scattering, absorption;
+    };
+    for (const Case& c : {Case{"grey sigma_t", glm::vec3(0.5f), glm::vec3(0.25f)},
+                          Case{"grey sum of coloured", {0.5f, 0.25f, 0.75f}, {0.25f, 0.5f, 0.0f}},
+                          Case{"coloured sigma_t", glm::vec3(0.5f), {1.5f, 0.0f, 0.0f}}}) {
+        s.volumes[0].medium.scattering = c.scattering;
+        s.volumes[0].medium.absorption = c.absorption;
+        RenderRequest request = smallRequest();
+        request.quality = Quality::High;
+        const FroxelResult cpu = renderFroxelCpu(s, request);
+        auto gpu = renderer->render(s, request, false);
+        ASSERT_TRUE(gpu.ok()) << gpu.error().message;
+        const double imageErr = relativeMeanAbsError(gpu.value().image, cpu.image);
+        EXPECT_LT(imageErr, 1.0e-3) << c.what;
+        std::printf("[gpu-vs-cpu] %-28s image %.2e\n", c.what, imageErr);
+    }
+}
+
 // The sun shadow map (shared/sun_shadow.h): a roof of two slabs with a gap over height fog and the
 // ground, so the light pass sees a shaft and the geometry pass a lit strip among shadow; both
 // renderers must sample the same map the same way (PCF edges included), at low's map size too.
