@@ -62,13 +62,14 @@ LightSample lightFroxelSample(LightData l, vec3 p, float nearest) {
 }
 
 #ifdef BRUME_LIGHT_EXACT
-// fog_shadow.glsl froxelFogTransmittance, with the corners of shadowCorners.
-vec3 exactFogTransmittance(int light, ShadowLookup k, ShadowCorners c, vec3 p, vec3 toLight, float distance) {
+// fog_shadow.glsl froxelFogTransmittance, with the corners of shadowCorners and the volumes vs
+// (fogVolumes()) fetched once per froxel, not once per light (docs/performance.md, "hoist").
+vec3 exactFogTransmittance(FogVolumes vs, int light, ShadowLookup k, ShadowCorners c, vec3 p, vec3 toLight, float distance) {
     if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, k);
     ShadowBlend b = blendShadowCorners(light, c, k.weights);
     if (b.trusted) return b.transmittance * vdb;
-    return lightFogTransmittance(lightAt(light), p, toLight, distance) * vdb;
+    return lightFogTransmittance(vs, lightAt(light), p, toLight, distance) * vdb;
 }
 
 // S at froxel id, which light.comp listed (so sigma_t > 0 there): each light's trusted blend as
@@ -83,6 +84,7 @@ void lightFroxel(ivec3 id) {
     float nearest = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
     HgPhaseTerms phase = hgPhaseTerms(scatteringG.a);
     float sun = lightSunVisibility(p);
+    FogVolumes volumes = fogVolumes();
     // Only the lights of this froxel's cluster (clusters.h), in the CPU's order.
     int record = clusterRecord(id, frame.froxelDims.xyz);
     bool all = clusterInt(record) == CLUSTER_ALL_LIGHTS;
@@ -94,7 +96,7 @@ void lightFroxel(ivec3 id) {
         vec3 inScatter = inScatterPerSigmaS(l, ls, viewDir, phase);
         // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
         if (inScatter == vec3(0.0f)) continue;
-        perSigmaS += inScatter * exactFogTransmittance(i, shadow, corners, p, ls.toLight, ls.distance) *
+        perSigmaS += inScatter * exactFogTransmittance(volumes, i, shadow, corners, p, ls.toLight, ls.distance) *
                      lightMapVisibility(i, p, sun);
     }
     vec3 source = scatteringG.rgb * perSigmaS + mediaEmissionAt(id);
