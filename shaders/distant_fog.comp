@@ -20,8 +20,8 @@ layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_
 // none, and the light sum's lengths are the volume sum's expressions again. The loop over
 // frame.counts.z ran every used kind's form for every volume, twice per light (lavapipe runs every
 // branch): docs/performance.md, "pixel" of round six.
-float pieceLength(int i, vec3 dir, float s0, float s1) {
-    VolumeData v = volumeAt(i);
+// v: volume i (fetched once per invocation for the listed volumes: fogVolumes()).
+float pieceLength(int i, VolumeData v, vec3 dir, float s0, float s1) {
     if (SPEC_VOLUME_COUNT >= 0) v.kind.x = listedVolumeKind(i);  // the same value, as a constant
     return distantDensityLength(v, frame.cameraPosition.xyz, dir, s0, s1);
 }
@@ -30,17 +30,19 @@ float pieceLength(int i, vec3 dir, float s0, float s1) {
 // directional lights (their fog transmittance at the piece's geometric middle) and the ambient.
 // Each light's transmittance is evaluated once per piece, outside the sum over volumes (it does not
 // depend on the volume). The sums run over the volumes in order, as the CPU's (buildDistantTable).
-Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) {
+// vs: the listed volumes, fetched once per invocation for all its pieces (fog_shadow.glsl
+// fogVolumes; docs/performance.md "hoist").
+Accumulated accumulateDistantPiece(FogVolumes vs, Accumulated a, vec3 dir, float s0, float s1) {
     vec3 middle = frame.cameraPosition.xyz + dir * sqrt(s0 * s1);
     DistantSegment seg = emptyDistantSegment();
     if (SPEC_VOLUME_COUNT >= 0) {
 #define BRUME_DISTANT_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT) seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, dir, s0, s1), frame.ambient.rgb);
+    if (i < SPEC_VOLUME_COUNT) seg = addDistantVolume(seg, vs.v##i, pieceLength(i, vs.v##i, dir, s0, s1), frame.ambient.rgb);
         BRUME_EACH_LISTED_VOLUME(BRUME_DISTANT_VOLUME)
 #undef BRUME_DISTANT_VOLUME
     } else {
         for (int i = 0; i < frame.counts.z; ++i)
-            seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, dir, s0, s1), frame.ambient.rgb);
+            seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, volumeAt(i), dir, s0, s1), frame.ambient.rgb);
     }
     // The surface lights (core/light_reach.h) hold every directional light that shines, in
     // increasing order, before any other: the CPU's sum over all lights, stopping at the first
@@ -52,17 +54,17 @@ Accumulated accumulateDistantPiece(Accumulated a, vec3 dir, float s0, float s1) 
         int j = clusterInt(reach + 1 + k);
         LightData l = lightAt(j);
         if (SPEC_DIRECTIONAL_LIGHTS < 0 && l.kind.x != LIGHT_DIRECTIONAL) break;
-        vec3 t = lightFogTransmittance(l, middle, -l.direction.xyz, BRUME_HUGE);
+        vec3 t = lightFogTransmittance(vs, l, middle, -l.direction.xyz, BRUME_HUGE);
         if (SPEC_VOLUME_COUNT >= 0) {
 #define BRUME_DISTANT_LIGHT(i)                                                                                   \
     if (i < SPEC_VOLUME_COUNT)                                                                                   \
-        seg = addDistantLight(seg, volumeAt(i), pieceLength(i, dir, s0, s1),                                     \
-                              distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
+        seg = addDistantLight(seg, vs.v##i, pieceLength(i, vs.v##i, dir, s0, s1),                                \
+                              distantLightPerSigmaS(l, dir, vs.v##i.sigmaS_g.w) * t);
             BRUME_EACH_LISTED_VOLUME(BRUME_DISTANT_LIGHT)
 #undef BRUME_DISTANT_LIGHT
         } else {
             for (int i = 0; i < frame.counts.z; ++i)
-                seg = addDistantLight(seg, volumeAt(i), pieceLength(i, dir, s0, s1),
+                seg = addDistantLight(seg, volumeAt(i), pieceLength(i, volumeAt(i), dir, s0, s1),
                                       distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
         }
     }
@@ -104,9 +106,10 @@ void main() {
     Accumulated a = emptyAccumulated();
     // Each step starts where the previous one ended: one distantTableDepth (a pow) per step, not two.
     float stepStart = distantTableDepth(frame, 0, n) * rayPerDepth;
+    FogVolumes volumes = fogVolumes();
     for (int j = 1; j <= needed; ++j) {
         float stepEnd = distantTableDepth(frame, j, n) * rayPerDepth;
-        a = accumulateDistantPiece(a, dir, stepStart, stepEnd);
+        a = accumulateDistantPiece(volumes, a, dir, stepStart, stepEnd);
         stepStart = stepEnd;
         int index = distantTableIndex(corners, c, j);
         distantTable[index] = vec4(a.scattering, 0.0f);
