@@ -8,6 +8,7 @@
 #include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
 #include "shaders/shared/distant_table.h"
+#include "shaders/shared/voxelize.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
@@ -456,8 +457,8 @@ void dispatchPass(const PassContext& ctx) {
                           groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
             break;
         case Dispatch::MediaFroxels:
-            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::FROXEL_GROUP_X), groups(r.mediaExtent.y, shd::FROXEL_GROUP_Y),
-                          groups(r.mediaExtent.z, shd::FROXEL_GROUP_Z));
+            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::VOXELIZE_GROUP_X),
+                          groups(r.mediaExtent.y, shd::VOXELIZE_GROUP_Y), groups(r.mediaExtent.z, shd::VOXELIZE_GROUP_Z));
             break;
         case Dispatch::MediaRuns:
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::LIGHT_GROUP_X), groups(r.mediaExtent.y, shd::LIGHT_GROUP_Y),
