@@ -283,9 +283,13 @@ FroxelResult renderFroxelFrameCpu(const Scene& scene, const RenderRequest& reque
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     // Layers of lights that touch nothing shaded are skipped: nobody reads them.
     const LightReach reach = buildLightReach(cs, frame, clusters, request.lightCulling);
-    // Only the cells the light pass's froxels (those with media) and the surfaces read, as on the GPU.
-    const FroxelRegion shadowCells =
-        shadowCellRegion(mediaFroxelRegion(cs, frame), frame, /*surfaces=*/!scene.geometry.empty());
+    // Only the cells the light pass's froxels (those with media whose clusters list the light) and the
+    // surfaces read, as on the GPU.
+    const std::vector<FroxelRegion> listed =
+        listedFroxelRegions(clusters, cs.lights.size(), mediaFroxelRegion(cs, frame));
+    std::vector<FroxelRegion> shadowCells;
+    for (const FroxelRegion& froxels : listed)
+        shadowCells.push_back(shadowCellRegion(froxels, frame, /*surfaces=*/!scene.geometry.empty()));
     const ShadowVolume shadow =
         computeShadowVolume(cs, frame, frame.shadowReduction, threads, &reach.shadowVolume, &shadowCells);
     v.overfullClusters = clusters.overfullClusters;

@@ -37,6 +37,37 @@ std::vector<char> listedInClusters(const LightClusters& clusters, size_t lightCo
 
 }  // namespace
 
+std::vector<FroxelRegion> listedFroxelRegions(const LightClusters& clusters, size_t lightCount,
+                                              const FroxelRegion& froxels) {
+    std::vector<FroxelRegion> out(lightCount);
+    if (froxels.empty()) return out;
+    auto grow = [&](size_t light, const FroxelRegion& box) {
+        FroxelRegion& r = out[light];
+        r = r.empty() ? box : FroxelRegion{glm::min(r.lo, box.lo), glm::max(r.hi, box.hi)};
+    };
+    const glm::ivec3 lo = froxels.lo / shd::CLUSTER_FROXELS;
+    const glm::ivec3 hi = glm::min((froxels.hi - 1) / shd::CLUSTER_FROXELS, clusters.dims - 1);
+    for (int z = lo.z; z <= hi.z; ++z) {
+        for (int y = lo.y; y <= hi.y; ++y) {
+            for (int x = lo.x; x <= hi.x; ++x) {
+                // The cluster's froxels inside `froxels`.
+                const glm::ivec3 c(x, y, z);
+                const FroxelRegion box{glm::max(c * shd::CLUSTER_FROXELS, froxels.lo),
+                                       glm::min((c + 1) * shd::CLUSTER_FROXELS, froxels.hi)};
+                const size_t r =
+                    static_cast<size_t>((z * clusters.dims.y + y) * clusters.dims.x + x) * shd::CLUSTER_STRIDE;
+                const int n = clusters.records[r];
+                if (n == shd::CLUSTER_ALL_LIGHTS) {
+                    for (size_t i = 0; i < lightCount; ++i) grow(i, box);
+                    continue;
+                }
+                for (int k = 0; k < n; ++k) grow(static_cast<size_t>(clusters.records[r + 1 + static_cast<size_t>(k)]), box);
+            }
+        }
+    }
+    return out;
+}
+
 bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth) {
     if (glm::vec3(l.intensity) == glm::vec3(0.0f)) return false;
     const float range = l.positionRange.w;

@@ -42,6 +42,14 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
 // nearDepth and farDepth [m] (fog_scale is not looked at).
 bool lightMayReachFrustum(const shd::LightData& l, const shd::FrameUniforms& frame, float nearDepth, float farDepth);
 
+// Per light, the box of the froxels of `froxels` whose cluster lists it (every froxel of an over-full
+// cluster): the only froxels where the light passes use the light's layer of the transmittance
+// volume (a froxel whose cluster does not list a light never adds its term). Empty for a light no
+// such cluster lists. The shadow volume pass computes each layer's cells around its box only
+// (core/media_region.h shadowCellRegion of the box; docs/gpu.md "Transmittance cells").
+std::vector<FroxelRegion> listedFroxelRegions(const LightClusters& clusters, size_t lightCount,
+                                              const FroxelRegion& froxels);
+
 // The ints the GPU reads after the cluster records (shared/clusters.h lightReachOffset): the surface
 // lights, the lights with a shadow-volume layer and the glowing lights, each as a count and its
 // indices padded to the light count; 3 + 3 x lights ints.

@@ -39,7 +39,9 @@ FroxelRegion temporalFroxelRegion(const FroxelRegion& media, glm::ivec3 dims);
 // that some reader needs this frame, i.e. the cells the shadow volume pass computes:
 // - the light passes (light.comp, light_exact.comp; core: lightRow) read the 8 cells of
 //   shd::shadowLookup (cell f / r and the clamped upper one) only at froxels f with sigma_t > 0, all in
-//   `media`: the cells from media.lo / r up to and including (media.hi - 1) / r + 1, within the volume;
+//   `media`: the cells from media.lo / r up to and including (media.hi - 1) / r + 1, within the volume.
+//   The renderers pass, per light, the box of the media froxels whose clusters list the light
+//   (core/light_reach.h listedFroxelRegions), the only ones that read its layer;
 // - surfaces (geometry.frag; core: surfaceFogTransmittance) read only the vdb layers, at any point of
 //   the grid: the whole volume when vdb shadows are on (frame.vdbShadowSamples > 0) and `surfaces`.
 // Indices are cells, not froxels. Empty when nothing reads the volume.

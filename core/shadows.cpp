@@ -55,7 +55,7 @@ glm::vec3 vdbLayerBlend(const ShadowVolume& sv, const shd::FrameUniforms& frame,
 }  // namespace
 
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
-                                 int threads, const std::vector<int>* layers, const FroxelRegion* cells) {
+                                 int threads, const std::vector<int>* layers, const std::vector<FroxelRegion>* cells) {
     ShadowVolume sv;
     sv.reduction = reduction;
     const glm::ivec3 froxelDims = glm::ivec3(frame.froxelDims);
@@ -65,17 +65,26 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
     const size_t layerCount = cs.lights.size() * (frame.vdbShadowSamples > 0 ? 2 : 1);
     sv.transmittance.assign(static_cast<size_t>(sv.dims.x * sv.dims.y * sv.dims.z) * layerCount,
                             glm::vec4(1.0f, 1.0f, 1.0f, 0.0f));
-    const FroxelRegion region = cells ? *cells : FroxelRegion{glm::ivec3(0), sv.dims};
+    // Each light's cells, and the box around them all.
+    const FroxelRegion whole{glm::ivec3(0), sv.dims};
+    auto cellsOf = [&](int light) { return cells ? (*cells)[static_cast<size_t>(light)] : whole; };
+    FroxelRegion region;
+    for (int i = 0; i < lights; ++i) {
+        const FroxelRegion c = cellsOf(i);
+        if (!c.empty()) region = region.empty() ? c : FroxelRegion{glm::min(region.lo, c.lo), glm::max(region.hi, c.hi)};
+    }
     if (region.empty()) return sv;
     const glm::ivec3 extent = region.hi - region.lo;
-    // One row of cells (light, z, y) of the region per item.
+    // One row of cells (light, z, y) of the box per item, the light's own cells of it computed.
     parallelFor(lights * extent.z * extent.y, threads, [&](int r) {
         const int y = region.lo.y + r % extent.y, z = region.lo.z + (r / extent.y) % extent.z;
         const int light = r / (extent.y * extent.z);
         const shd::LightData& l = cs.lights[static_cast<size_t>(light)];
         if (!shd::fogShadowsLight(l, frame.localFogShadows)) return;
         if (layers && (*layers)[static_cast<size_t>(light)] == 0) return;
-        for (int x = region.lo.x; x < region.hi.x; ++x) {
+        const FroxelRegion own = cellsOf(light);
+        if (y < own.lo.y || y >= own.hi.y || z < own.lo.z || z >= own.hi.z) return;
+        for (int x = own.lo.x; x < own.hi.x; ++x) {
             const glm::ivec3 froxel = shd::shadowCellFroxel(glm::ivec3(x, y, z), froxelDims, reduction);
             const glm::vec3 p = shd::worldFromFroxelCoord(glm::vec3(froxel) + glm::vec3(frame.jitter), frame);
             const shd::LightSample ls = shd::evalLight(l, p);

@@ -45,11 +45,12 @@ struct ShadowVolume {
 };
 
 // layers: per light, 0 = skip its layer (core/light_reach.h; nobody reads it); null: every one.
-// cells: only these cells of each layer are computed (core/media_region.h shadowCellRegion: the ones
-// some reader needs), the others hold 1 like a skipped layer; null: every cell.
+// cells: per light, only these cells of its layer are computed (core/media_region.h shadowCellRegion of
+// core/light_reach.h listedFroxelRegions: the ones some reader needs), the others hold 1 like a skipped
+// layer; null: every cell.
 ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUniforms& frame, int reduction,
                                  int threads, const std::vector<int>* layers = nullptr,
-                                 const FroxelRegion* cells = nullptr);
+                                 const std::vector<FroxelRegion>* cells = nullptr);
 
 // The light pass's transmittance toward light `light` for the froxel whose shd::shadowLookup is k
 // (sample point p): the volume's trilinear blend where its 8 cells agree, the exact closed form

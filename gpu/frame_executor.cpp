@@ -392,9 +392,17 @@ void pushRegion(const PassContext& ctx, const FroxelRegion& region) {
     vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
 }
 
+// One dispatch per computed layer over its cells, the light pushed in lo.w (FrameResources::shadowLayers):
+// the layers write disjoint entries, so no barrier between them.
 void recordShadowCells(const PassContext& ctx) {
-    pushRegion(ctx, ctx.res->shadowCells);
-    dispatchPass(ctx);
+    bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
+    for (const FrameResources::ShadowLayer& layer : ctx.res->shadowLayers) {
+        const glm::ivec3 e = layer.cells.hi - layer.cells.lo;
+        const shd::FroxelRegionParams p{glm::ivec4(layer.cells.lo, layer.light), glm::ivec4(layer.cells.hi, 0)};
+        vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
+        vkCmdDispatch(ctx.cmd, groups(e.x, shd::FROXEL_GROUP_X), groups(e.y, shd::FROXEL_GROUP_Y),
+                      groups(e.z, shd::FROXEL_GROUP_Z));
+    }
 }
 
 void recordComposite(const PassContext& ctx) {
@@ -452,10 +460,7 @@ void dispatchPass(const PassContext& ctx) {
         case Dispatch::Single:
             if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
             break;
-        case Dispatch::ShadowCells:
-            vkCmdDispatch(ctx.cmd, groups(r.shadowExtent.x, shd::FROXEL_GROUP_X),
-                          groups(r.shadowExtent.y, shd::FROXEL_GROUP_Y), groups(r.shadowExtent.z, shd::FROXEL_GROUP_Z));
-            break;
+        case Dispatch::ShadowCells: break;  // one dispatch per layer: recordShadowCells
         case Dispatch::MediaFroxels:
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::VOXELIZE_GROUP_X),
                           groups(r.mediaExtent.y, shd::VOXELIZE_GROUP_Y), groups(r.mediaExtent.z, shd::VOXELIZE_GROUP_Z));

@@ -44,11 +44,15 @@ struct FrameResources {
 
     glm::ivec3 froxelDims{0};  // of the image3D resources
     glm::ivec2 size{0};        // of the image2D resources
-    // The cells the shadow volume pass computes in each listed light's layer (core/media_region.h
-    // shadowCellRegion, pushed as shd::FroxelRegionParams), and its dispatch: their extent x, y and
-    // z * listed lights (shaders/shared/shadow_volume.h).
-    FroxelRegion shadowCells;
-    glm::ivec3 shadowExtent{0};
+    // Each computed layer of the fog transmittance volume: its light, and the cells the shadow volume
+    // pass computes in it (core/media_region.h shadowCellRegion of the froxels whose clusters list the
+    // light, core/light_reach.h listedFroxelRegions); one dispatch per layer, pushed as
+    // shd::FroxelRegionParams with the light in lo.w (shaders/shadow_volume.comp).
+    struct ShadowLayer {
+        int light = 0;
+        FroxelRegion cells;
+    };
+    std::vector<ShadowLayer> shadowLayers;
     // The pixels the composite dispatch covers, [lo, hi) (gpu_renderer.cpp compositePixels); the
     // others get sceneColor copied (frame_executor.cpp recordComposite).
     glm::ivec2 compositeLo{0};

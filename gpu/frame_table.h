@@ -191,7 +191,7 @@ enum class Dispatch : uint8_t {
                       // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
     FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
     Single,       // one invocation, with distant fog only (the tile lists)
-    ShadowCells,  // one per shadow volume cell of each light that needs one (FrameResources::shadowExtent)
+    ShadowCells,  // one per shadow volume cell some reader needs, a dispatch per layer (FrameResources::shadowLayers)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*,
                   // with distant fog only (FrameResources::distantFog)
@@ -240,7 +240,7 @@ enum class Record : uint8_t {
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)
-    ShadowCells,   // push the shadow volume's cell region, then dispatch (frame_executor.cpp)
+    ShadowCells,   // per computed layer: push its light and cells, dispatch (frame_executor.cpp)
     Composite,     // copy the background where no fog is, push the pixels, dispatch (frame_executor.cpp)
 };
 

@@ -365,12 +365,15 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h), and in
-    // them only the cells some reader needs: those around the media region's froxels (the whole
-    // volume when surfaces read vdb layers).
-    const FroxelRegion shadowCells = shadowCellRegion(media, frame, /*surfaces=*/!mesh.vertices.empty());
-    const glm::ivec3 shadowCellExtent = shadowCells.empty() ? glm::ivec3(0) : shadowCells.hi - shadowCells.lo;
-    r.shadowCells = shadowCells;
-    r.shadowExtent = {shadowCellExtent.x, shadowCellExtent.y, shadowCellExtent.z * reach[1 + cs.lights.size()]};
+    // each only the cells some reader needs: those around the media region's froxels whose clusters
+    // list the layer's light (the whole volume when surfaces read vdb layers).
+    const std::vector<FroxelRegion> listed = listedFroxelRegions(clusters, cs.lights.size(), media);
+    r.shadowLayers.clear();
+    for (size_t i = 0; i < cs.lights.size(); ++i) {
+        if (lightReach.shadowVolume[i] == 0) continue;
+        const FroxelRegion cells = shadowCellRegion(listed[i], frame, /*surfaces=*/!mesh.vertices.empty());
+        if (!cells.empty()) r.shadowLayers.push_back({static_cast<int>(i), cells});
+    }
     if (!mesh.vertices.empty()) std::memcpy(r.vertices.mapped, mesh.vertices.data(), mesh.bytes());
     std::memcpy(r[BufferId::sunShadowMap].mapped, &sun.fit, sizeof(sun.fit));
     if (sunBytes > 0)

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/clusters.h"
 #include "core/froxel_frame.h"
+#include "core/light_reach.h"
 #include "core/media_region.h"
 #include "core/render.h"
 #include "gpu/gpu_renderer.h"
@@ -242,7 +244,10 @@ TEST(GpuTemporal, RegionEqualsTheWholeGridAndTheHistoryOfAMovedVolumeDoesNotLing
 // get a NaN source, or take the exact fallback where the whole grid's blend was trusted: either way its
 // froxel volumes and image would differ from the whole-grid renderer's (froxelRegions off: every cell
 // of every listed layer written). With a sun and the two local lights, at high and low (reductions 2
-// and 4), a box resting, moved to the other side, partly off screen, and orbited: byte-identical.
+// and 4), a box resting, moved to the other side, partly off screen, orbited, and a wide box that a
+// short-ranged point light reaches in part: byte-identical. The local lights' layers are computed
+// around the froxels whose clusters list them only (core/light_reach.h listedFroxelRegions): fewer
+// cells than the media region's in the last frame.
 TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
     test::PoisonedRegionAndWholeGrid pair;
     pair.create();
@@ -253,6 +258,7 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
             return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(x.w);
         });
     };
+    int smallerLayers = 0;  // local lights' layers with fewer cells than the media region's
     for (Quality q : {Quality::High, Quality::Low}) {
         RenderRequest req;
         req.width = 160;
@@ -261,13 +267,19 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
         req.history = HistoryMode::Continue;
         const std::vector<glm::vec3> places = {{-2.6f, 1.2f, -1.0f}, {-2.6f, 1.2f, -1.0f}, {2.6f, 1.2f, 0.0f},
                                                {5.2f, 0.8f, 1.0f}, {0.0f, 1.5f, -6.0f}};
-        for (size_t n = 0; n < places.size() + 1; ++n) {
+        for (size_t n = 0; n < places.size() + 2; ++n) {
             Scene s = regionScene(places[std::min(n, places.size() - 1)]);
             Light sun = makeLight(LightType::Directional);
             sun.direction = glm::normalize(glm::vec3(0.5f, -0.8f, -0.3f));
             sun.intensity = 2.0f;
             s.lights.push_back(sun);
-            if (n == places.size()) s.camera = orbitCamera(s.camera, 12.0f);
+            if (n >= places.size()) s.camera = orbitCamera(s.camera, 12.0f);
+            const bool wide = n == places.size() + 1;  // a wide box the point light's short range reaches in part
+            if (wide) {
+                s.volumes[0].transform.translation = {0.0f, 1.2f, -1.0f};
+                s.volumes[0].transform.scale = {9.0f, 3.0f, 9.0f};
+                s.lights[1].range = 3.0f;
+            }
             const std::string what = std::string(q == Quality::High ? "high" : "low") + " frame " + std::to_string(n);
             auto g = pair.region->render(s, req, true);
             ASSERT_TRUE(g.ok()) << g.error().message;
@@ -285,10 +297,18 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
             // The pass did skip cells: the region is a small part of the volume, and the box is lit.
             const FroxelRegion cells = shadowCellRegion(mediaFroxelRegion(compileScene(s), gv.frame), gv.frame, true);
             const glm::ivec3 all = shd::shadowVolumeDims(gv.dims, gv.frame.shadowReduction);
-            EXPECT_LT(cells.froxels() * 3, int64_t(all.x) * all.y * all.z) << what;
+            if (!wide) EXPECT_LT(cells.froxels() * 3, int64_t(all.x) * all.y * all.z) << what;
             EXPECT_GT(g.value().litFroxels, 0u) << what;
+            const CompiledScene cs = compileScene(s);
+            const std::vector<FroxelRegion> listed = listedFroxelRegions(
+                buildLightClusters(cs, gv.frame), cs.lights.size(), mediaFroxelRegion(cs, gv.frame));
+            for (size_t i = 0; i < listed.size(); ++i)
+                if (cs.lights[i].kind.x != shd::LIGHT_DIRECTIONAL && !listed[i].empty() &&
+                    shadowCellRegion(listed[i], gv.frame, true).froxels() < cells.froxels())
+                    ++smallerLayers;
         }
     }
+    EXPECT_GT(smallerLayers, 0);
     pair.expectNoValidationMessages();
 }
 

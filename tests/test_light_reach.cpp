@@ -114,6 +114,55 @@ TEST(LightReach, ShadowVolumeLayersOnlyForLightsThatTouchSomething) {
     EXPECT_EQ(buildLightReach(cs, frame, clusters, true, true, &grid).shadowVolume, reach.shadowVolume);
 }
 
+// Each light's listed froxels (the shadow volume pass's per-layer region): the box of exactly the
+// froxels of the given region whose cluster lists the light, found here froxel by froxel; the sun's is
+// the whole region, a local light's a small part of it, a light no cluster lists has none; an
+// over-full cluster counts for every light.
+TEST(LightReach, ListedFroxelRegionsBoundTheFroxelsWhoseClustersListEachLight) {
+    const Scene s = reachScene();
+    const CompiledScene cs = compileScene(s);
+    const shd::FrameUniforms frame = frameOf(s, cs);
+    const LightClusters clusters = buildLightClusters(cs, frame);
+    const glm::ivec3 dims(frame.froxelDims);
+    for (const FroxelRegion& froxels : {FroxelRegion{glm::ivec3(0), dims}, FroxelRegion{glm::ivec3(3, 2, 5), dims - 4}}) {
+        const std::vector<FroxelRegion> listed = listedFroxelRegions(clusters, cs.lights.size(), froxels);
+        ASSERT_EQ(listed.size(), cs.lights.size());
+        std::vector<glm::ivec3> lo(cs.lights.size(), dims), hi(cs.lights.size(), glm::ivec3(0));
+        for (int z = froxels.lo.z; z < froxels.hi.z; ++z)
+            for (int y = froxels.lo.y; y < froxels.hi.y; ++y)
+                for (int x = froxels.lo.x; x < froxels.hi.x; ++x) {
+                    const int r = shd::clusterRecord(glm::ivec3(x, y, z), dims);
+                    for (int k = 0; k < clusters.records[static_cast<size_t>(r)]; ++k) {
+                        const size_t i = static_cast<size_t>(clusters.records[static_cast<size_t>(r + 1 + k)]);
+                        lo[i] = glm::min(lo[i], glm::ivec3(x, y, z));
+                        hi[i] = glm::max(hi[i], glm::ivec3(x, y, z) + 1);
+                    }
+                }
+        for (size_t i = 0; i < cs.lights.size(); ++i) {
+            if (glm::any(glm::lessThanEqual(hi[i], lo[i]))) {
+                EXPECT_TRUE(listed[i].empty()) << "light " << i;
+                continue;
+            }
+            EXPECT_EQ(listed[i].lo, lo[i]) << "light " << i;
+            EXPECT_EQ(listed[i].hi, hi[i]) << "light " << i;
+        }
+        EXPECT_EQ(listed[0].lo, froxels.lo);  // the sun: every cluster
+        EXPECT_EQ(listed[0].hi, froxels.hi);
+        EXPECT_FALSE(listed[1].empty());
+        EXPECT_LT(listed[1].froxels() * 2, froxels.froxels());
+        EXPECT_TRUE(listed[3].empty());  // far to the side
+    }
+    // Over-full clusters list every light: each light's region is then the whole one.
+    LightClusters full = clusters;
+    for (size_t r = 0; r < full.records.size(); r += shd::CLUSTER_STRIDE) full.records[r] = shd::CLUSTER_ALL_LIGHTS;
+    const FroxelRegion grid{glm::ivec3(0), dims};
+    for (const FroxelRegion& r : listedFroxelRegions(full, cs.lights.size(), grid)) {
+        EXPECT_EQ(r.lo, grid.lo);
+        EXPECT_EQ(r.hi, grid.hi);
+    }
+    EXPECT_TRUE(listedFroxelRegions(clusters, cs.lights.size(), FroxelRegion{})[0].empty());
+}
+
 // Skipped layers are never read: the CPU image and source are the unculled ones, bit for bit, with
 // the fog's shadow on the floor and in the fog (high: point lights too).
 TEST(LightReach, CulledImageEqualsUnculled) {

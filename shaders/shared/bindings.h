@@ -39,7 +39,8 @@ BRUME_CONST int LIGHT_GROUP_Y = 8;
 // The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis
 // (core/media_region.h temporalFroxelRegion; w unused). The rest of the grid is known without them:
 // the frame clears it (gpu/pass_temporal.cpp). The shadow volume pass's: the cells it computes in
-// each listed light's layer (core/media_region.h shadowCellRegion); the others are never read.
+// one listed light's layer (core/media_region.h shadowCellRegion), the light in lo.w; the others are
+// never read.
 struct FroxelRegionParams {
     ivec4 lo;
     ivec4 hi;

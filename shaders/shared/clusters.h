@@ -35,7 +35,7 @@ BRUME_FUNC int clusterRecord(ivec3 froxel, ivec3 froxelDims) {
 //   [0] n surface lights, [1..n] their indices, directional ones first, each group ascending (the
 //   geometry and composite passes' loops),
 //   [1 + lights] m, [2 + lights..] the m lights whose transmittance layer is computed, ascending
-//   (the shadow volume pass dispatches m layers),
+//   (no shader reads it now: the host dispatches the shadow volume pass once per such layer),
 //   [2 + 2 x lights] g, [3 + 2 x lights..] the g lights whose glow the composite adds, ascending;
 //   3 + 3 x lights ints in all.
 BRUME_FUNC int lightReachOffset(ivec3 froxelDims) {
