@@ -90,22 +90,12 @@ void recordIntegrate(const PassContext& ctx);
 // Debug view (Record::DebugView): the view and slice as push constants, then the dispatch.
 void recordDebugView(const PassContext& ctx);
 
-// Glow (Record::Glow): per dispatch of glowDispatches in order, its rectangle and light index as push
-// constants, a dispatch over the rectangle, and a barrier before the next light's (the lights'
-// rectangles may overlap; one light's bands do not).
+// Glow (Record::Glow): per glowing light in order, its rectangle and index as push constants, a
+// dispatch over the rectangle, and a barrier before the next (the rectangles may overlap).
 void recordGlow(const PassContext& ctx);
 
-// Bands of one light's glow dispatch (glowDispatches): at most this many, each whole workgroup rows
-// of its rectangle. Lavapipe pays the quadrature on every pixel dispatched, and a rectangle holds the
-// ball's ellipse with at least 1 - pi/4 of its pixels outside; 8 bands leave about half of that
-// waste (a disc: 0.87 of its rectangle) for 8 dispatches (docs/performance.md, "pixel, round seven").
-inline constexpr int GLOW_BANDS_PER_LIGHT = 8;
-
 // The glow pass's dispatches for the lights the light reach lists as glowing (core/light_reach.h),
-// in that order, leaving out those whose ball no pixel's ray meets (shd::lightGlowScreenRect): per
-// light its rectangle cut into up to GLOW_BANDS_PER_LIGHT bands of workgroup rows, each band only as
-// wide as the pixels of its rows whose rays can meet the ball (the whole rectangle when the ball
-// reaches behind the camera near). Every pixel whose ray meets the ball is in one band.
+// in that order, leaving out those whose ball no pixel's ray meets (shd::lightGlowScreenRect).
 std::vector<shd::GlowParams> glowDispatches(const std::vector<shd::LightData>& lights, const shd::FrameUniforms& frame,
                                             const std::vector<int>& glowLights);
 

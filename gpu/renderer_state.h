@@ -30,7 +30,7 @@ struct GpuRenderer::State {
     SpecKey froxelSpec;               // spec with the volumes out of the froxels' reach culled (PassDecl::culledVolumes)
     SpecKey surfaceSpec;              // spec with the volumes out of the surfaces' reach culled (the geometry pass)
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
-    std::vector<shd::GlowParams> glow;   // the glow pass's dispatches, a few bands per glowing light in view
+    std::vector<shd::GlowParams> glow;   // the glow pass's dispatches, one per glowing light in view
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
     // When::SurfacesChanged passes: this frame keeps their last output (reuseSurfaces), which is
     // valid while surfacesValid (no resource replaced since the frame that wrote it) and was made

@@ -10,11 +10,8 @@
 #include <set>
 #include <string>
 
-#include "core/compile.h"
-#include "core/quality.h"
 #include "glslang_support.h"
 #include "gpu/frame_table.h"
-#include "gpu/passes.h"
 
 using namespace brume;
 using namespace brume::gpu;
@@ -239,61 +236,3 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
 }
 
 }  // namespace
-
-// The glow pass's bands (gpu/pass_glow.cpp glowDispatches): every pixel whose ray meets a light's glow
-// ball (shd::lightGlowRay, as glow.comp and the CPU renderer decide it) lies in exactly one band of
-// that light, the bands of a light are disjoint rows of whole workgroups inside its rectangle, and
-// for the lights well in view they hold fewer pixels than the rectangle. Lights on and off the view
-// axis, near and far, beside the image edge, and one whose ball reaches behind the camera near.
-TEST(FrameTable, GlowBandsHoldEveryPixelWhoseRayMeetsTheBall) {
-    Scene scene;
-    const FroxelSettings fs = resolveFroxelSettings(scene, Quality::Low);
-    for (const glm::ivec2 size : {glm::ivec2(160, 90), glm::ivec2(333, 187)}) {
-        const int w = size.x, h = size.y;
-        const shd::FrameUniforms f = makeFrameUniforms(scene, compileScene(scene), w, h, fs);
-        const glm::vec3 origin = glm::vec3(f.cameraPosition);
-        const float farDepth = f.projection.w;
-        std::vector<shd::LightData> lights;
-        for (const glm::vec3 position :
-             {glm::vec3(0.4f, 1.2f, 1.0f), glm::vec3(-3.0f, 0.3f, 2.0f), glm::vec3(0.0f, 2.0f, 7.6f),
-              glm::vec3(6.5f, 1.0f, 0.0f), glm::vec3(2.0f, 5.0f, -30.0f), glm::vec3(0.0f, 2.0f, 9.5f),
-              glm::vec3(1.9f, 0.9f, -1.2f), glm::vec3(-1.6f, 0.7f, 1.6f)}) {
-            Light point = makeLight(LightType::Point);
-            point.position = position;
-            lights.push_back(compileLight(point));
-        }
-        std::vector<int> glowLights(lights.size());
-        for (size_t i = 0; i < lights.size(); ++i) glowLights[i] = static_cast<int>(i);
-        const std::vector<shd::GlowParams> bands = gpu::glowDispatches(lights, f, glowLights);
-        int smaller = 0;
-        for (size_t i = 0; i < lights.size(); ++i) {
-            const glm::ivec4 rect = shd::lightGlowScreenRect(lights[i], f);
-            std::vector<int> covered(static_cast<size_t>(w * h), 0);
-            long bandPixels = 0;
-            for (const shd::GlowParams& g : bands) {
-                if (g.light.x != static_cast<int>(i)) continue;
-                EXPECT_TRUE(g.rect.x >= rect.x && g.rect.y >= rect.y && g.rect.z <= rect.z && g.rect.w <= rect.w);
-                EXPECT_EQ((g.rect.y - rect.y) % shd::SCREEN_GROUP_Y, 0);
-                bandPixels += static_cast<long>(g.rect.z - g.rect.x + 1) * (g.rect.w - g.rect.y + 1);
-                for (int y = g.rect.y; y <= g.rect.w; ++y)
-                    for (int x = g.rect.x; x <= g.rect.z; ++x) ++covered[static_cast<size_t>(y * w + x)];
-            }
-            int inside = 0;
-            for (int y = 0; y < h; ++y) {
-                for (int x = 0; x < w; ++x) {
-                    EXPECT_LE(covered[static_cast<size_t>(y * w + x)], 1) << "light " << i << ": pixel " << x << ", " << y;
-                    const glm::vec3 viewRay = shd::viewRayFromPixel(glm::vec2(x, y) + glm::vec2(0.5f), f);
-                    const glm::vec3 dir = glm::normalize(glm::vec3(f.worldFromView * glm::vec4(viewRay, 0.0f)));
-                    if (shd::lightGlowRay(lights[i], f, origin, dir, farDepth * glm::length(viewRay)).radius <= 0.0f)
-                        continue;
-                    ++inside;
-                    EXPECT_EQ(covered[static_cast<size_t>(y * w + x)], 1)
-                        << w << "x" << h << ", light " << i << ": pixel " << x << ", " << y;
-                }
-            }
-            const long rectPixels = rect.z < rect.x ? 0 : static_cast<long>(rect.z - rect.x + 1) * (rect.w - rect.y + 1);
-            if (inside > 0 && rectPixels < w * h / 4 && bandPixels < rectPixels) ++smaller;
-        }
-        EXPECT_GE(smaller, 3) << w << "x" << h;  // the lights well in view: bands within their rectangle
-    }
-}
