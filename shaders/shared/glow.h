@@ -110,29 +110,37 @@ BRUME_FUNC ivec3 lightGlowFroxel(LightGlowRay r, vec3 origin, vec3 dir, FrameUni
     return clamp(i, ivec3(0), ivec3(f.froxelDims) - ivec3(1));
 }
 
+// One node of lightGlowPerSigmaS's quadrature: x in [-1, 1] on [phi0, phi1], weight its weight.
+BRUME_FUNC vec3 lightGlowNode(LightData l, LightGlowRay r, vec3 origin, vec3 dir, vec3 sigmaT, float g, float mid,
+                              float halfWidth, float x, float weight) {
+    float t = r.b * tan(mid + halfWidth * x);
+    LightSample s = evalLightNear(l, origin + dir * (r.closest + t), LIGHT_MIN_DISTANCE);
+    float rr = max(s.distance, LIGHT_MIN_DISTANCE);
+    float u2 = (s.distance * s.distance) / (r.radius * r.radius);
+    float h = max(1.0f - u2, 0.0f);
+    // dt / r^2 = dphi / b: the irradiance's 1/r^2 times r^2 / b.
+    float w = weight * halfWidth * h * h * rr * rr / r.b;
+    float depth = max(r.closest + t - r.enter, 0.0f);  // inside the ball, before this point
+    return inScatterPerSigmaS(l, s, dir, g) * w * exp(-sigmaT * (depth + s.distance));
+}
+
 // The pixel part along ray r, per unit sigma_s, as seen from where the ray enters the ball (multiply
 // by sigma_s and the transmittance from the camera to r.enter). sigmaT and g: the ball's medium.
 // Every exponent is <= 0, so an opaque medium gives 0, never an overflow.
+// 6-point Gauss-Legendre on [phi0, phi1], in symmetric pairs, written out node by node: as a loop
+// over arrays of nodes and weights, lavapipe kept the loop and the arrays (indexed by the trip), and
+// the glow pass cost 1.25x (docs/performance.md, "pixel, round seven"). The same sum in the same order.
 BRUME_FUNC vec3 lightGlowPerSigmaS(LightData l, LightGlowRay r, vec3 origin, vec3 dir, vec3 sigmaT, float g) {
     vec3 sum = vec3(0.0f);
     if (r.radius <= 0.0f) return sum;
-    // 6-point Gauss-Legendre on [phi0, phi1], in symmetric pairs.
-    float nodes[3] = {0.2386191861f, 0.6612093865f, 0.9324695142f};
-    float weights[3] = {0.4679139346f, 0.3607615730f, 0.1713244924f};
     float mid = 0.5f * (r.phi.x + r.phi.y);
     float halfWidth = 0.5f * (r.phi.y - r.phi.x);
-    for (int k = 0; k < 6; ++k) {
-        float x = (k % 2 == 0 ? 1.0f : -1.0f) * nodes[k / 2];
-        float t = r.b * tan(mid + halfWidth * x);
-        LightSample s = evalLightNear(l, origin + dir * (r.closest + t), LIGHT_MIN_DISTANCE);
-        float rr = max(s.distance, LIGHT_MIN_DISTANCE);
-        float u2 = (s.distance * s.distance) / (r.radius * r.radius);
-        float h = max(1.0f - u2, 0.0f);
-        // dt / r^2 = dphi / b: the irradiance's 1/r^2 times r^2 / b.
-        float w = weights[k / 2] * halfWidth * h * h * rr * rr / r.b;
-        float depth = max(r.closest + t - r.enter, 0.0f);  // inside the ball, before this point
-        sum += inScatterPerSigmaS(l, s, dir, g) * w * exp(-sigmaT * (depth + s.distance));
-    }
+    sum += lightGlowNode(l, r, origin, dir, sigmaT, g, mid, halfWidth, 0.2386191861f, 0.4679139346f);
+    sum += lightGlowNode(l, r, origin, dir, sigmaT, g, mid, halfWidth, -0.2386191861f, 0.4679139346f);
+    sum += lightGlowNode(l, r, origin, dir, sigmaT, g, mid, halfWidth, 0.6612093865f, 0.3607615730f);
+    sum += lightGlowNode(l, r, origin, dir, sigmaT, g, mid, halfWidth, -0.6612093865f, 0.3607615730f);
+    sum += lightGlowNode(l, r, origin, dir, sigmaT, g, mid, halfWidth, 0.9324695142f, 0.1713244924f);
+    sum += lightGlowNode(l, r, origin, dir, sigmaT, g, mid, halfWidth, -0.9324695142f, 0.1713244924f);
     return sum;
 }
 
