@@ -324,7 +324,7 @@ TEST_F(DensityTextureTest, DetailLayerMultipliesItsOwnFactorIntoTheDensity) {
     for (int a : {1, 3, 6, 8})
         for (int b : {1, 4, 7})
             for (int c : {-8, -3, 2, 5}) {
-                const glm::vec3 p(a * voxel, b * voxel, c * voxel);
+                const glm::vec3 p(static_cast<float>(a) * voxel, static_cast<float>(b) * voxel, static_cast<float>(c) * voxel);
                 const double detail = 1.0 + s * (std::pow(field(wrap(4 * a - 1), wrap(4 * b), wrap(4 * c)), e) / mean - 1.0);
                 const double expected = field(wrap(a), wrap(b), wrap(c)) * std::max(detail, 0.0);
                 EXPECT_NEAR(volumeDensity(cs, 0, p), expected, 1e-3 * expected + 1e-5) << a << " " << b << " " << c;

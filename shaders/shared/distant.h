@@ -44,18 +44,24 @@ BRUME_FUNC float heightExponentialLength(float y0, float dy, float len, float ba
 
 // Integral of clamp(1 - max(y(s) - base, 0) / h, 0, 1) over s in [0, len]: the density is linear in s
 // between the crossings of base and base + h, so the midpoint rule on those pieces is exact.
+// One piece [a, b] of heightLinearLength, on which the density is linear: its length x its middle's.
+BRUME_FUNC float heightLinearPiece(float y0, float dy, float base, float h, float a, float b) {
+    float mid = 0.5f * (a + b);
+    float density = clamp(1.0f - max(y0 + dy * mid - base, 0.0f) / h, 0.0f, 1.0f);
+    return (b - a) * density;
+}
+
+// (The three pieces written out rather than a loop over an array of edges, which lavapipe ran lane by
+// lane: docs/performance.md, "pixel, round seven".)
 BRUME_FUNC float heightLinearLength(float y0, float dy, float len, float base, float h) {
     float c0 = heightCrossing(y0, dy, len, base);
     float c1 = heightCrossing(y0, dy, len, base + h);
     float sA = min(c0, c1);
     float sB = max(c0, c1);
     float total = 0.0f;
-    float edges[4] = {0.0f, sA, sB, len};
-    for (int i = 0; i < 3; ++i) {
-        float mid = 0.5f * (edges[i] + edges[i + 1]);
-        float density = clamp(1.0f - max(y0 + dy * mid - base, 0.0f) / h, 0.0f, 1.0f);
-        total += (edges[i + 1] - edges[i]) * density;
-    }
+    total += heightLinearPiece(y0, dy, base, h, 0.0f, sA);
+    total += heightLinearPiece(y0, dy, base, h, sA, sB);
+    total += heightLinearPiece(y0, dy, base, h, sB, len);
     return total;
 }
 

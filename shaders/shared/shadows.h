@@ -172,20 +172,27 @@ BRUME_FUNC vec2 shapeInterval(int shape, vec3 o, vec3 d, float h) {
     return cubeInterval(o, d, h);
 }
 
+// One node of shapeFadedPiece's quadrature: x in [-1, 1] on the piece, weight its weight.
+BRUME_FUNC float shapeFadedNode(VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float mid, float halfLen, float x,
+                                float weight) {
+    float s = mid + halfLen * x;
+    float u = shapeDistance(boxShape(v), (lo + ld * s) * 2.0f);
+    float density = u < 1.0f ? edgeFade(u, v.params.x) : 0.0f;
+    return weight * density * exp(-v.params.z * max(y0 + dy * s - v.params.w, 0.0f));
+}
+
 // Gauss-Legendre, 4 nodes, of the density over a piece [s0, s1] (lo, ld local; y0, dy world
-// height of o and its rate along the ray).
+// height of o and its rate along the ray). The nodes written out, not a loop over constant arrays:
+// the compiler kept such a loop and its arrays, which lavapipe ran lane by lane (docs/performance.md,
+// "pixel, round seven": the glow's quadrature).
 BRUME_FUNC float shapeFadedPiece(VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float s0, float s1) {
-    float nodes[4] = {-0.8611363115940526f, -0.3399810435848563f, 0.3399810435848563f, 0.8611363115940526f};
-    float weights[4] = {0.3478548451374538f, 0.6521451548625461f, 0.6521451548625461f, 0.3478548451374538f};
     float halfLen = 0.5f * (s1 - s0);
     float mid = 0.5f * (s0 + s1);
     float sum = 0.0f;
-    for (int i = 0; i < 4; ++i) {
-        float s = mid + halfLen * nodes[i];
-        float u = shapeDistance(boxShape(v), (lo + ld * s) * 2.0f);
-        float density = u < 1.0f ? edgeFade(u, v.params.x) : 0.0f;
-        sum += weights[i] * density * exp(-v.params.z * max(y0 + dy * s - v.params.w, 0.0f));
-    }
+    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, -0.8611363115940526f, 0.3478548451374538f);
+    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, -0.3399810435848563f, 0.6521451548625461f);
+    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, 0.3399810435848563f, 0.6521451548625461f);
+    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, 0.8611363115940526f, 0.3478548451374538f);
     return sum * halfLen;
 }
 
