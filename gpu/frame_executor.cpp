@@ -8,7 +8,6 @@
 #include "shaders/shared/bindings.h"
 #include "shaders/shared/brume.h"
 #include "shaders/shared/distant_table.h"
-#include "shaders/shared/voxelize.h"
 #include "vk_check.h"
 
 namespace brume::gpu {
@@ -462,8 +461,8 @@ void dispatchPass(const PassContext& ctx) {
             break;
         case Dispatch::ShadowCells: break;  // one dispatch per layer: recordShadowCells
         case Dispatch::MediaFroxels:
-            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::VOXELIZE_GROUP_X),
-                          groups(r.mediaExtent.y, shd::VOXELIZE_GROUP_Y), groups(r.mediaExtent.z, shd::VOXELIZE_GROUP_Z));
+            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::FROXEL_GROUP_X),
+                          groups(r.mediaExtent.y, shd::FROXEL_GROUP_Y), groups(r.mediaExtent.z, shd::FROXEL_GROUP_Z));
             break;
         case Dispatch::MediaRuns:
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::LIGHT_GROUP_X), groups(r.mediaExtent.y, shd::LIGHT_GROUP_Y),

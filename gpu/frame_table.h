@@ -181,7 +181,7 @@ struct ResList {
 // How many invocations a compute pass runs (workgroup sizes: shaders/shared/types.h).
 enum class Dispatch : uint8_t {
     Froxels,      // one per froxel, FROXEL_GROUP_*
-    MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), VOXELIZE_GROUP_*
+    MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), FROXEL_GROUP_*
     MediaRuns,    // one per run of LIGHT_RUN froxels along z of the media region, LIGHT_GROUP_* (bindings.h)
     RegionFroxels,  // one per froxel of the temporal region (FrameResources::temporalRegion), FROXEL_GROUP_*
     RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*

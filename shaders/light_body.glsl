@@ -209,24 +209,28 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
             LightSample ls = lightFroxelSample(l, p[j], nearest[j]);
             vec3 inScatter = inScatterPerSigmaS(l, ls, viewDir[j], phase[j]);
             // Outside the range window or the cone, or fog_scale 0: the shadow cannot matter.
-            if (inScatter == vec3(0.0f)) continue;
-            ShadowLevel lower = pickLevel(level[j], l0, l1, l2, l3, l4);
-            ShadowLevel upper = pickLevel(level[j] + 1, l0, l1, l2, l3, l4);
-            ShadowBlend b = shadowBlendLevels(lower, upper, shadow[j].weights);
-            bool trusted = !shadows || b.trusted;
-            vec3 transmittance = shadows ? b.transmittance * vdbShadowBlend(i, shadow[j]) : vec3(1.0f);
-            perSigmaS[j] += inScatter * transmittance * lightMapVisibility(i, p[j], sun[j]);
-            exact[j] = exact[j] || !trusted;
+            // (An if block, not a `continue`: spirv-opt unrolls an [[unroll]] loop only without one,
+            // and the per-slot arrays then become registers; docs/performance.md, "groups".)
+            if (inScatter != vec3(0.0f)) {
+                ShadowLevel lower = pickLevel(level[j], l0, l1, l2, l3, l4);
+                ShadowLevel upper = pickLevel(level[j] + 1, l0, l1, l2, l3, l4);
+                ShadowBlend b = shadowBlendLevels(lower, upper, shadow[j].weights);
+                bool trusted = !shadows || b.trusted;
+                vec3 transmittance = shadows ? b.transmittance * vdbShadowBlend(i, shadow[j]) : vec3(1.0f);
+                perSigmaS[j] += inScatter * transmittance * lightMapVisibility(i, p[j], sun[j]);
+                exact[j] = exact[j] || !trusted;
+            }
         }
     }
     uint bits = 0u;
     [[unroll]] for (int j = 0; j < LIGHT_BLOCK; ++j) {
-        if (!valid[j]) continue;
-        ivec3 id = ivec3(xy, z0 + j);
-        vec3 source = media[j] ? scatteringG[j].rgb * perSigmaS[j] + emission[j] : emission[j];
-        imageStore(sourceImage, id, vec4(source, 0.0f));
-        if (media[j]) ++lit;
-        if (media[j] && exact[j]) bits |= 1u << uint(j);
+        if (valid[j]) {
+            ivec3 id = ivec3(xy, z0 + j);
+            vec3 source = media[j] ? scatteringG[j].rgb * perSigmaS[j] + emission[j] : emission[j];
+            imageStore(sourceImage, id, vec4(source, 0.0f));
+            if (media[j]) ++lit;
+            if (media[j] && exact[j]) bits |= 1u << uint(j);
+        }
     }
     return bits;
 }

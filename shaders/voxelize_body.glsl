@@ -5,9 +5,8 @@
 // Dispatched over the froxels that can hold media only (core/media_region.h: frame.mediaOrigin*); the
 // frame clears the rest of the grid, and all of mediaEmission when no volume emits (SPEC_EMISSION).
 #include "influence.glsl"
-#include "voxelize.h"
 
-layout(local_size_x = VOXELIZE_GROUP_X, local_size_y = VOXELIZE_GROUP_Y, local_size_z = VOXELIZE_GROUP_Z) in;
+layout(local_size_x = FROXEL_GROUP_X, local_size_y = FROXEL_GROUP_Y, local_size_z = FROXEL_GROUP_Z) in;
 
 // Volume i (of kind k: a constant in pipelines specialized with the scene's volume list) at p. The
 // volumes come through the texel view volumeTexels (resources.glsl volumeAt: a vector gather on

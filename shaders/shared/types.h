@@ -27,9 +27,9 @@ BRUME_CONST int LIGHT_DIRECTIONAL = 0;
 BRUME_CONST int LIGHT_POINT = 1;
 BRUME_CONST int LIGHT_SPOT = 2;
 
-// Froxel compute passes (shadow volume, temporal) run 8x2x4 invocations; dispatch counts use
-// brumeDivRoundUp. Lavapipe runs a workgroup as 8-wide batches along x only, so 4x4x4 left half of
-// every batch masked (docs/performance.md, "froxel, round 7" and "groups"; voxelize: voxelize.h).
+// Froxel compute passes (voxelize, shadow volume, temporal) run 8x2x4 invocations; dispatch counts
+// use brumeDivRoundUp. Lavapipe runs a workgroup as 8-wide batches along x only, so 4x4x4 left half
+// of every batch masked (docs/performance.md, "froxel, round 7" and "groups").
 BRUME_CONST int FROXEL_GROUP_X = 8;
 BRUME_CONST int FROXEL_GROUP_Y = 2;
 BRUME_CONST int FROXEL_GROUP_Z = 4;
