@@ -161,6 +161,11 @@ bool replacementSpirv(const char* name, std::vector<uint32_t>& words, std::strin
     }
     words.resize(bytes.size() / sizeof(uint32_t));
     std::copy(bytes.begin(), bytes.end(), reinterpret_cast<char*>(words.data()));
+    constexpr uint32_t kSpirvMagic = 0x07230203u;
+    if (words[0] != kSpirvMagic) {
+        problem = path.string() + ": not SPIR-V (it does not begin with SPIR-V's magic number).";
+        return true;
+    }
     std::fprintf(stderr, "brume: shader %s replaced by %s (BRUME_SPV_DIR)\n", name, path.string().c_str());
     return true;
 }

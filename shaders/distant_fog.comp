@@ -37,12 +37,14 @@ Accumulated accumulateDistantPiece(FogVolumes vs, Accumulated a, vec3 dir, float
     DistantSegment seg = emptyDistantSegment();
     if (SPEC_VOLUME_COUNT >= 0) {
 #define BRUME_DISTANT_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT) seg = addDistantVolume(seg, vs.v##i, pieceLength(i, vs.v##i, dir, s0, s1), frame.ambient.rgb);
+    if (BRUME_SPEC_VOLUME_LISTED(i)) seg = addDistantVolume(seg, vs.v##i, pieceLength(i, vs.v##i, dir, s0, s1), frame.ambient.rgb);
         BRUME_EACH_LISTED_VOLUME(BRUME_DISTANT_VOLUME)
 #undef BRUME_DISTANT_VOLUME
     } else {
-        for (int i = 0; i < frame.counts.z; ++i)
-            seg = addDistantVolume(seg, volumeAt(i), pieceLength(i, volumeAt(i), dir, s0, s1), frame.ambient.rgb);
+        for (int i = 0; i < frame.counts.z; ++i) {
+            VolumeData v = volumeAt(i);
+            seg = addDistantVolume(seg, v, pieceLength(i, v, dir, s0, s1), frame.ambient.rgb);
+        }
     }
     // The surface lights (core/light_reach.h) hold every directional light that shines, in
     // increasing order, before any other: the CPU's sum over all lights, stopping at the first
@@ -57,15 +59,16 @@ Accumulated accumulateDistantPiece(FogVolumes vs, Accumulated a, vec3 dir, float
         vec3 t = lightFogTransmittance(vs, l, middle, -l.direction.xyz, BRUME_HUGE);
         if (SPEC_VOLUME_COUNT >= 0) {
 #define BRUME_DISTANT_LIGHT(i)                                                                                   \
-    if (i < SPEC_VOLUME_COUNT)                                                                                   \
+    if (BRUME_SPEC_VOLUME_LISTED(i))                                                                             \
         seg = addDistantLight(seg, vs.v##i, pieceLength(i, vs.v##i, dir, s0, s1),                                \
                               distantLightPerSigmaS(l, dir, vs.v##i.sigmaS_g.w) * t);
             BRUME_EACH_LISTED_VOLUME(BRUME_DISTANT_LIGHT)
 #undef BRUME_DISTANT_LIGHT
         } else {
-            for (int i = 0; i < frame.counts.z; ++i)
-                seg = addDistantLight(seg, volumeAt(i), pieceLength(i, volumeAt(i), dir, s0, s1),
-                                      distantLightPerSigmaS(l, dir, volumeAt(i).sigmaS_g.w) * t);
+            for (int i = 0; i < frame.counts.z; ++i) {
+                VolumeData v = volumeAt(i);
+                seg = addDistantLight(seg, v, pieceLength(i, v, dir, s0, s1), distantLightPerSigmaS(l, dir, v.sigmaS_g.w) * t);
+            }
         }
     }
     return accumulateDistant(a, seg);

@@ -7,9 +7,6 @@ int localFogShadowsFlag() { return SPEC_LOCAL_FOG_SHADOWS != 0 ? frame.localFogS
 // Volume i's kind in a pipeline specialized with the scene's volume list (SPEC_VOLUME_COUNT >= 0).
 int listedVolumeKind(int i) { return BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i); }
 
-// Whether listed volume i takes part in the closed forms (a constant once specialized).
-#define BRUME_FOG_VOLUME_LISTED(i) (i < SPEC_VOLUME_COUNT && listedVolumeKind(i) != SPEC_CULLED_VOLUME)
-
 // The listed volumes' data, fetched once by an invocation that evaluates the transmittance toward
 // several lights (or at several points): lavapipe gathers a volume's texels lane by lane on every
 // fetch, and fetched inside the light loop they were gathered once per light (docs/performance.md,
@@ -23,7 +20,7 @@ struct FogVolumes {
 
 FogVolumes fogVolumes() {
     FogVolumes f;
-#define BRUME_FETCH_FOG_VOLUME(i) if (BRUME_FOG_VOLUME_LISTED(i)) f.v##i = volumeAt(i);
+#define BRUME_FETCH_FOG_VOLUME(i) if (BRUME_SPEC_VOLUME_LISTED(i)) f.v##i = volumeAt(i);
     BRUME_EACH_LISTED_VOLUME(BRUME_FETCH_FOG_VOLUME)
 #undef BRUME_FETCH_FOG_VOLUME
     return f;
@@ -41,7 +38,7 @@ vec3 lightFogTransmittance(FogVolumes vs, LightData l, vec3 p, vec3 toLight, flo
         // Unrolled by hand with each volume's kind a constant: only that kind's closed form is
         // built for it (a loop would run every kind's code for every volume on lavapipe).
 #define BRUME_LISTED_VOLUME(i) \
-    if (BRUME_FOG_VOLUME_LISTED(i)) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), vs.v##i, p, toLight, distance);
+    if (BRUME_SPEC_VOLUME_LISTED(i)) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), vs.v##i, p, toLight, distance);
         BRUME_EACH_LISTED_VOLUME(BRUME_LISTED_VOLUME)
 #undef BRUME_LISTED_VOLUME
     } else {

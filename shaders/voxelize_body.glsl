@@ -33,7 +33,7 @@ MediaSample mediaAt(vec3 p) {
         // Unrolled by hand with each volume's kind a constant (fog_shadow.glsl does the same): only that
         // kind's density is built for it; a loop would run every kind's code for every volume.
 #define BRUME_LISTED_VOLUME(i) \
-    if (i < SPEC_VOLUME_COUNT && BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i) != SPEC_CULLED_VOLUME) \
+    if (BRUME_SPEC_VOLUME_LISTED(i)) \
         addVolume(m, i, BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i), p);
         BRUME_EACH_LISTED_VOLUME(BRUME_LISTED_VOLUME)
 #undef BRUME_LISTED_VOLUME

@@ -129,7 +129,7 @@ BRUME_FUNC vec3 lightGlowNode(LightData l, LightGlowRay r, vec3 origin, vec3 dir
 // Every exponent is <= 0, so an opaque medium gives 0, never an overflow.
 // 6-point Gauss-Legendre on [phi0, phi1], in symmetric pairs, written out node by node: as a loop
 // over arrays of nodes and weights, lavapipe kept the loop and the arrays (indexed by the trip), and
-// the glow pass cost 1.25x (docs/performance.md, "pixel, round seven"). The same sum in the same order.
+// the glow pass cost about 1.28x (docs/performance.md, "pixel, round seven"). The same sum in the same order.
 BRUME_FUNC vec3 lightGlowPerSigmaS(LightData l, LightGlowRay r, vec3 origin, vec3 dir, vec3 sigmaT, float g) {
     vec3 sum = vec3(0.0f);
     if (r.radius <= 0.0f) return sum;

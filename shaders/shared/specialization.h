@@ -30,7 +30,7 @@
 #define BRUME_SPEC_LISTED_KIND(list, i) (((list) >> (3 * (i))) & 7)
 // M(0) ... M(SPEC_MAX_LISTED_VOLUMES - 1): the shaders' loops over the listed volumes, unrolled so that
 // each volume's index, and so its kind, is a constant (fog_shadow.glsl, voxelize_body.glsl,
-// distant_fog.comp; each body tests i < SPEC_VOLUME_COUNT).
+// distant_fog.comp; each body tests BRUME_SPEC_VOLUME_LISTED(i)).
 #define BRUME_EACH_LISTED_VOLUME(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7) M(8) M(9)
 // In the froxel passes' list only (gpu: RendererState::froxelSpec): volume i is out of their reach this
 // frame (core/media_region.h froxelVolumesInReach), its terms are exactly 0 and are left out.
@@ -45,6 +45,10 @@ BRUME_SPEC_CONSTANTS(BRUME_GLSL_SPEC_CONSTANT)
 #undef BRUME_GLSL_SPEC_CONSTANT
 // Whether volume kind k can occur in this pipeline's scene (a constant once specialized).
 #define BRUME_VOLUME_KIND_USED(k) ((SPEC_VOLUME_KINDS & (1 << (k))) != 0)
+// Whether slot i of BRUME_EACH_LISTED_VOLUME holds a volume this pipeline evaluates: listed, and not
+// culled (a constant once specialized; the bodies of the unrolled loops test it).
+#define BRUME_SPEC_VOLUME_LISTED(i) \
+    ((i) < SPEC_VOLUME_COUNT && BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i) != SPEC_CULLED_VOLUME)
 #endif
 
 #endif
