@@ -210,6 +210,9 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
         grey = grey && (!closedForm || (sigmaT.x == sigmaT.y && sigmaT.y == sigmaT.z));
     }
     k[SpecId::SPEC_GREY_FOG_SHADOWS] = grey ? 1 : 0;
+    bool spots = false;
+    for (const shd::LightData& l : cs.lights) spots = spots || l.kind.x == shd::LIGHT_SPOT;
+    k[SpecId::SPEC_SPOT_LIGHTS] = spots ? 1 : 0;
     static_assert(SPEC_MAX_LISTED_VOLUMES == 10, "BRUME_EACH_LISTED_VOLUME (specialization.h) expands 10 volumes");
     if (cs.volumes.size() <= SPEC_MAX_LISTED_VOLUMES) {
         int list = 0;

@@ -223,6 +223,25 @@ TEST_F(GpuTest, LinearHeightFogLitBySpotMatchesCpu) {
     expectMatchesCpu(s, "height linear + spot");
 }
 
+// Pipelines of a scene without spot lights leave the cone out (SPEC_SPOT_LIGHTS, lighting.h
+// evalLightNear). One renderer, the same light as a point light, then a spot, then a point again: a
+// cone left out of the spot's pipelines would light the whole sphere around it (the fog and the ground
+// outside the cone, far past the 1% tolerance), and a pipeline kept from the spot frame must not
+// narrow the point light's.
+TEST_F(GpuTest, SpotConeFollowsTheSceneWhenItsLightChangesKind) {
+    Scene s = baseScene();
+    s.volumes = {height(HeightProfile::Exponential)};
+    s.geometry = ground();
+    Light light = spotLight();
+    light.type = LightType::Point;
+    s.lights = {sun(), light};
+    expectMatchesCpu(s, "point light (no spot)");
+    s.lights[1].type = LightType::Spot;
+    expectMatchesCpu(s, "the same light as a spot");
+    s.lights[1].type = LightType::Point;
+    expectMatchesCpu(s, "back to a point light");
+}
+
 TEST_F(GpuTest, DepthFogWithAmbientOnlyMatchesCpu) {
     Scene s = baseScene();
     s.volumes = {depthFog()};

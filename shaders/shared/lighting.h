@@ -2,6 +2,7 @@
 #ifndef BRUME_SHARED_LIGHTING_H
 #define BRUME_SHARED_LIGHTING_H
 
+#include "specialization.h"
 #include "types.h"
 
 BRUME_NAMESPACE_BEGIN
@@ -89,7 +90,9 @@ BRUME_FUNC LightSample evalLightNear(LightData l, vec3 p, float minDistance) {
     s.distance = dist;
     float r = max(dist, max(minDistance, LIGHT_MIN_DISTANCE));
     float atten = rangeWindow(dist, l.positionRange.w) / (r * r);
-    if (l.kind.x == LIGHT_SPOT) {
+    // BRUME_SPOT_LIGHTS_USED: compiled out of pipelines whose scene has no spot light, where lavapipe
+    // would run the cone for every light under a mask (docs/performance.md, "spot").
+    if (BRUME_SPOT_LIGHTS_USED && l.kind.x == LIGHT_SPOT) {
         atten *= spotCone(dot(vec3(l.direction), -s.toLight), l.spot.x, l.spot.y);
     }
     s.irradiance = vec3(l.intensity) * atten;

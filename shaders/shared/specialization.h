@@ -21,7 +21,8 @@
     X(SPEC_INFLUENCERS, 9, 1)          /* 0: no influencer sample (voxelize leaves the factor out) */      \
     X(SPEC_SHADOW_REDUCTION, 10, 0)    /* frame.shadowReduction (the light pass's cell levels); 0: read it */ \
     X(SPEC_EMISSION, 11, 1)            /* 0: no volume emits: voxelize leaves mediaEmission's store out */ \
-    X(SPEC_GREY_FOG_SHADOWS, 12, 0)    /* 1: every volume's sigma_s + sigma_a is grey: one exp per light */
+    X(SPEC_GREY_FOG_SHADOWS, 12, 0)    /* 1: every volume's sigma_s + sigma_a is grey: one exp per light */ \
+    X(SPEC_SPOT_LIGHTS, 13, 1)         /* 0: no spot light: evalLightNear's cone is left out */
 
 // Scenes with at most this many volumes get each volume's kind as a constant (SPEC_VOLUME_LIST):
 // volume i's VOLUME_* (0..4) in 3 bits, packed and unpacked by these two macros on both sides.
@@ -39,12 +40,15 @@
 #ifdef __cplusplus
 // The CPU evaluates every kind.
 #define BRUME_VOLUME_KIND_USED(k) true
+#define BRUME_SPOT_LIGHTS_USED true
 #else
 #define BRUME_GLSL_SPEC_CONSTANT(name, id, value) layout(constant_id = id) const int name = value;
 BRUME_SPEC_CONSTANTS(BRUME_GLSL_SPEC_CONSTANT)
 #undef BRUME_GLSL_SPEC_CONSTANT
 // Whether volume kind k can occur in this pipeline's scene (a constant once specialized).
 #define BRUME_VOLUME_KIND_USED(k) ((SPEC_VOLUME_KINDS & (1 << (k))) != 0)
+// Whether a spot light can occur in this pipeline's scene (a constant once specialized).
+#define BRUME_SPOT_LIGHTS_USED (SPEC_SPOT_LIGHTS != 0)
 // Whether slot i of BRUME_EACH_LISTED_VOLUME holds a volume this pipeline evaluates: listed, and not
 // culled (a constant once specialized; the bodies of the unrolled loops test it).
 #define BRUME_SPEC_VOLUME_LISTED(i) \
