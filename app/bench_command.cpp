@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_text.h"
+#include "core/temporal.h"
 #include "io/atomic_file.h"
 #include "io/scene_json.h"
 #include "render_command.h"
@@ -91,6 +92,10 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
     cmd->add_option("--warmup", o.warmup,
                     "Untimed renders first (the first dispatch pays shader compilation). Default: 3. Range: 0..1000.")
         ->check(CLI::Range(0, 1000));
+    o.orbit = settings::cli_orbit.f();
+    // The same camera path as `brume render --orbit`, over every render (warm-ups included): the timed
+    // frames are then in motion, where the temporal pass reprojects (at rest it dispatches nothing).
+    cmd->add_option("--orbit", o.orbit, optionHelp(settings::cli_orbit));
     cmd->add_flag("--cpu", o.cpu, "Time the CPU froxel renderer instead of the GPU. Default: off.");
     cmd->add_flag("--no-light-culling", o.noLightCulling,
                   "Light pass loops over every light, not its cluster's list (to measure culling). Default: off.");
@@ -126,6 +131,9 @@ CommandResult runBench(const BenchOptions& o) {
     if (!scene) return badInput(scene.error().message);
     if (Result<void> g = loadGridsPrintingWarnings(scene.value(), o.scenePath, settings::cli_vdb_memory.i()); !g)
         return badInput(g.error().message);
+    if (!std::isfinite(o.orbit) || o.orbit < settings::cli_orbit.min || o.orbit > settings::cli_orbit.max)
+        return badInput("--orbit " + formatNumber(o.orbit) + " is out of range: expected " +
+                        formatRange(settings::cli_orbit) + ".");
     RenderRequest request = requestFromScene(scene.value());
     if (o.widthOption->count() > 0) request.width = o.width;
     if (o.heightOption->count() > 0) request.height = o.height;
@@ -149,8 +157,10 @@ CommandResult runBench(const BenchOptions& o) {
     std::vector<std::string> order;
     std::vector<double> wall;
     RenderStats last;
+    Scene frameScene = scene.value();
     for (int i = 0; i < o.warmup + o.frames; ++i) {
-        std::variant<RenderOutput, RenderFailure> r = session.render(scene.value(), request);
+        if (o.orbit != 0.0f) frameScene.camera = orbitCamera(scene.value().camera, o.orbit * static_cast<float>(i));
+        std::variant<RenderOutput, RenderFailure> r = session.render(frameScene, request);
         if (const RenderFailure* f = std::get_if<RenderFailure>(&r)) return internalFailure(f->message);
         if (i < o.warmup) continue;
         last = std::get<RenderOutput>(r).stats;
@@ -161,10 +171,11 @@ CommandResult runBench(const BenchOptions& o) {
         }
     }
     const double wallMedian = median(wall);
-    std::printf("brume bench: %s, %s renderer%s%s, %dx%d, quality %s, froxels %dx%dx%d, %d frames after %d warm-up\n",
+    const std::string motion = o.orbit != 0.0f ? ", camera orbiting " + formatNumber(o.orbit) + " deg per frame" : "";
+    std::printf("brume bench: %s, %s renderer%s%s, %dx%d, quality %s, froxels %dx%dx%d, %d frames after %d warm-up%s\n",
                 o.scenePath.c_str(), rendererName(kind), last.device.empty() ? "" : " on ", last.device.c_str(),
                 request.width, request.height, toString(request.quality), last.froxelDims.x, last.froxelDims.y,
-                last.froxelDims.z, o.frames, o.warmup);
+                last.froxelDims.z, o.frames, o.warmup, motion.c_str());
     double passSum = 0.0;
     for (const std::string& name : order) passSum += median(passMs[name]);
     if (!order.empty()) {
@@ -200,6 +211,7 @@ CommandResult runBench(const BenchOptions& o) {
         j["quality"] = toString(request.quality);
         j["frames"] = o.frames;
         j["warmup"] = o.warmup;
+        j["orbit_deg"] = o.orbit;
         j["wall_ms"] = wallMedian;
         nlohmann::ordered_json passes = nlohmann::ordered_json::object();
         for (const std::string& name : order) passes[name] = median(passMs[name]);

@@ -20,6 +20,7 @@ struct BenchOptions {
     bool cpu = false;
     bool noLightCulling = false;
     bool noVdbCulling = false;
+    float orbit = 0.0f;        // --orbit: degrees the camera turns per render (settings::cli_orbit)
     std::string device;
     std::string jsonPath;      // --json: medians written here (atomically)
     std::string baselinePath;  // --baseline: an earlier --json output to print ratios against

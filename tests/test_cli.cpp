@@ -276,7 +276,7 @@ TEST_F(Cli, HelpOfEveryCommandMentionsEveryOption) {
           "--threads", "px", "1..16384", "low|medium|high|ultra", "Default:", "Range:"}},
         {"validate --help", {"scene"}},
         {"settings --help", {"--markdown"}},
-        {"bench --help", {"--frames", "--warmup", "--cpu", "--json", "--baseline", "--device"}},
+        {"bench --help", {"--frames", "--warmup", "--cpu", "--orbit", "--json", "--baseline", "--device"}},
     };
     for (const Case& c : cases) {
         const CliRun r = brume(c.command);
@@ -324,6 +324,32 @@ TEST_F(Cli, BenchJsonAndBaselineRatios) {
     expectOneLineError(brume(bench + " --baseline nopasses.json"), "\"pass_ms\"");
     expectOneLineError(brume(bench + " --baseline negative.json"), "\"pass_ms\".light");
     expectOneLineError(brume(bench + " --json nowhere/b.json"), "nowhere");
+}
+
+// bench --orbit turns the camera by n x the angle at render n (warm-ups included), as render --orbit does,
+// so that the timed frames are in motion. The small box's lit froxels depend on the view: after 2
+// warm-ups at 60 deg a render the timed frame looks from 120 deg and lights fewer froxels than the
+// static one; at 180 deg it has come round to the start (360 deg) and lights the same ones.
+TEST_F(Cli, BenchOrbitTurnsTheCameraEveryRender) {
+    const std::string scene = quoted(std::string(BRUME_SOURCE_DIR) + "/bench/scenes/small_box.json");
+    const std::string bench = "bench " + scene + " --width 320 --height 180 --quality low --cpu --frames 1 --warmup 2";
+    auto litLine = [](const CliRun& r) {
+        const size_t at = r.out.find("lit froxels");
+        return at == std::string::npos ? std::string("(none)") : r.out.substr(at, r.out.find(',', at) - at);
+    };
+    const CliRun still = brume(bench);
+    const CliRun turned = brume(bench + " --orbit 60 --json orbit.json");
+    const CliRun round = brume(bench + " --orbit 180");
+    ASSERT_EQ(still.exitCode, 0) << still.err;
+    ASSERT_EQ(turned.exitCode, 0) << turned.err;
+    ASSERT_EQ(round.exitCode, 0) << round.err;
+    EXPECT_NE(litLine(still), "(none)") << still.out;
+    EXPECT_NE(litLine(turned), litLine(still)) << turned.out;
+    EXPECT_EQ(litLine(round), litLine(still)) << round.out;
+    EXPECT_NE(turned.out.find("camera orbiting 60 deg per frame"), std::string::npos) << turned.out;
+    EXPECT_EQ(still.out.find("orbiting"), std::string::npos) << still.out;
+    EXPECT_NE(readText(dir_ / "work" / "orbit.json").find("\"orbit_deg\": 60"), std::string::npos);
+    expectOneLineError(brume(bench + " --orbit 500"), "--orbit 500 is out of range: expected -180..180 deg.");
 }
 
 TEST_F(Cli, RelativeScenePathFromAnotherFolder) {
