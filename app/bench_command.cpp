@@ -112,7 +112,11 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
 }
 
 CommandResult runBench(const BenchOptions& o) {
-    // Both files are checked before the first frame: a typo should not cost a benchmark's minutes.
+    // Both files and --orbit are checked before the scene's grids are read: a typo should not cost a
+    // benchmark's minutes.
+    if (!std::isfinite(o.orbit) || o.orbit < settings::cli_orbit.min || o.orbit > settings::cli_orbit.max)
+        return badInput("--orbit " + formatNumber(o.orbit) + " is out of range: expected " +
+                        formatRange(settings::cli_orbit) + ".");
     std::optional<Baseline> baseline;
     if (!o.baselinePath.empty()) {
         Result<Baseline> b = readBaseline(o.baselinePath);
@@ -131,9 +135,6 @@ CommandResult runBench(const BenchOptions& o) {
     if (!scene) return badInput(scene.error().message);
     if (Result<void> g = loadGridsPrintingWarnings(scene.value(), o.scenePath, settings::cli_vdb_memory.i()); !g)
         return badInput(g.error().message);
-    if (!std::isfinite(o.orbit) || o.orbit < settings::cli_orbit.min || o.orbit > settings::cli_orbit.max)
-        return badInput("--orbit " + formatNumber(o.orbit) + " is out of range: expected " +
-                        formatRange(settings::cli_orbit) + ".");
     RenderRequest request = requestFromScene(scene.value());
     if (o.widthOption->count() > 0) request.width = o.width;
     if (o.heightOption->count() > 0) request.height = o.height;
