@@ -41,10 +41,7 @@ std::vector<FroxelRegion> listedFroxelRegions(const LightClusters& clusters, siz
                                               const FroxelRegion& froxels) {
     std::vector<FroxelRegion> out(lightCount);
     if (froxels.empty()) return out;
-    auto grow = [&](size_t light, const FroxelRegion& box) {
-        FroxelRegion& r = out[light];
-        r = r.empty() ? box : FroxelRegion{glm::min(r.lo, box.lo), glm::max(r.hi, box.hi)};
-    };
+    auto grow = [&](size_t light, const FroxelRegion& box) { out[light] = regionUnion(out[light], box); };
     const glm::ivec3 lo = froxels.lo / shd::CLUSTER_FROXELS;
     const glm::ivec3 hi = glm::min((froxels.hi - 1) / shd::CLUSTER_FROXELS, clusters.dims - 1);
     for (int z = lo.z; z <= hi.z; ++z) {
@@ -115,15 +112,9 @@ LightReach buildLightReach(const CompiledScene& cs, const shd::FrameUniforms& fr
 }
 
 std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount) {
-    std::vector<int> record(3 + 3 * lightCount, 0);
+    std::vector<int> record(1 + lightCount, 0);
     record[0] = static_cast<int>(reach.surfaceLights.size());
     for (size_t k = 0; k < reach.surfaceLights.size(); ++k) record[1 + k] = reach.surfaceLights[k];
-    int* layers = &record[1 + lightCount];
-    for (size_t i = 0; i < lightCount; ++i)
-        if (reach.shadowVolume[i] != 0) layers[1 + layers[0]++] = static_cast<int>(i);
-    int* glow = &record[2 + 2 * lightCount];
-    glow[0] = static_cast<int>(reach.glowLights.size());
-    for (size_t k = 0; k < reach.glowLights.size(); ++k) glow[1 + k] = reach.glowLights[k];
     return record;
 }
 

@@ -25,7 +25,7 @@ struct LightReach {
     // a loop trip costs the same whether its body is skipped or not (docs/performance.md).
     std::vector<int> surfaceLights;
     std::vector<int> shadowVolume;   // per light: 1 = its transmittance layer is computed
-    // Lights whose glow (shared/glow.h) the composite adds per pixel, ascending: a glow radius in this
+    // Lights whose glow (shared/glow.h) the glow pass adds per pixel, ascending: a glow radius in this
     // frame, and (with culling) a range that reaches some volume's bounds; elsewhere the glow is 0.
     std::vector<int> glowLights;
 };
@@ -51,8 +51,9 @@ std::vector<FroxelRegion> listedFroxelRegions(const LightClusters& clusters, siz
                                               const FroxelRegion& froxels);
 
 // The ints the GPU reads after the cluster records (shared/clusters.h lightReachOffset): the surface
-// lights, the lights with a shadow-volume layer and the glowing lights, each as a count and its
-// indices padded to the light count; 3 + 3 x lights ints.
+// lights as a count and their indices, padded to the light count; 1 + lights ints. The layers and the
+// glowing lights stay on the host, which dispatches the shadow volume pass per layer and the glow
+// pass per light.
 std::vector<int> lightReachRecord(const LightReach& reach, size_t lightCount);
 
 }  // namespace brume

@@ -78,6 +78,12 @@ bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner) {
     return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) && glm::all(glm::greaterThanEqual(outer.hi, inner.hi));
 }
 
+FroxelRegion regionUnion(const FroxelRegion& a, const FroxelRegion& b) {
+    if (a.empty()) return b.empty() ? FroxelRegion{} : b;
+    if (b.empty()) return a;
+    return FroxelRegion{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+}
+
 namespace {
 
 // The convex set of points (the hull of `points`, swept along `sweep` to infinity when it is not

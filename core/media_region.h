@@ -50,6 +50,9 @@ FroxelRegion shadowCellRegion(const FroxelRegion& media, const shd::FrameUniform
 // Whether every froxel of `inner` lies in `outer` (an empty inner lies in any region).
 bool regionContains(const FroxelRegion& outer, const FroxelRegion& inner);
 
+// The smallest region holding both a and b (an empty one adds nothing; empty when both are).
+FroxelRegion regionUnion(const FroxelRegion& a, const FroxelRegion& b);
+
 // Per volume of cs: whether it can add anything to the froxel passes of this frame (voxelize's media,
 // the fog transmittance toward a light at a froxel's sample point or a shadow volume cell). False
 // only when proved: the volume's bounds miss both the froxel frustum (every sample point, any

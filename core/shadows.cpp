@@ -69,10 +69,7 @@ ShadowVolume computeShadowVolume(const CompiledScene& cs, const shd::FrameUnifor
     const FroxelRegion whole{glm::ivec3(0), sv.dims};
     auto cellsOf = [&](int light) { return cells ? (*cells)[static_cast<size_t>(light)] : whole; };
     FroxelRegion region;
-    for (int i = 0; i < lights; ++i) {
-        const FroxelRegion c = cellsOf(i);
-        if (!c.empty()) region = region.empty() ? c : FroxelRegion{glm::min(region.lo, c.lo), glm::max(region.hi, c.hi)};
-    }
+    for (int i = 0; i < lights; ++i) region = regionUnion(region, cellsOf(i));
     if (region.empty()) return sv;
     const glm::ivec3 extent = region.hi - region.lo;
     // One row of cells (light, z, y) of the box per item, the light's own cells of it computed.

@@ -337,8 +337,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(chooseVariant(cs));
     // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
     const glm::ivec3 c = shd::clusterDims(dims);
-    const size_t clusterInts = static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(c.x * c.y * c.z) + 3 +
-                               3 * cs.lights.size();
+    const size_t clusterInts =
+        static_cast<size_t>(shd::CLUSTER_STRIDE) * static_cast<size_t>(c.x * c.y * c.z) + 1 + cs.lights.size();
     BRUME_TRY(ensureBuffer(BufferId::lightClusters, clusterInts * sizeof(int), dirty));
     // Whole rgba32f texels: its readers go through the texel view sunShadowTexels (shared/frame_table.h).
     static_assert(sizeof(shd::SunShadowFit) == 16 * shd::SUN_SHADOW_FIT_TEXELS);
@@ -386,8 +386,8 @@ void recordClearMedia(const PassContext& ctx) {
     dispatchPass(ctx);
 }
 
-void pushRegion(const PassContext& ctx, const FroxelRegion& region) {
-    const shd::FroxelRegionParams p{glm::ivec4(region.lo, 0), glm::ivec4(region.hi, 0)};
+void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW) {
+    const shd::FroxelRegionParams p{glm::ivec4(region.lo, loW), glm::ivec4(region.hi, 0)};
     vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
 }
 
@@ -397,8 +397,7 @@ void recordShadowCells(const PassContext& ctx) {
     bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
     for (const FrameResources::ShadowLayer& layer : ctx.res->shadowLayers) {
         const glm::ivec3 e = layer.cells.hi - layer.cells.lo;
-        const shd::FroxelRegionParams p{glm::ivec4(layer.cells.lo, layer.light), glm::ivec4(layer.cells.hi, 0)};
-        vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
+        pushRegion(ctx, layer.cells, layer.light);
         vkCmdDispatch(ctx.cmd, groups(e.x, shd::FROXEL_GROUP_X), groups(e.y, shd::FROXEL_GROUP_Y),
                       groups(e.z, shd::FROXEL_GROUP_Z));
     }

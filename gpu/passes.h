@@ -35,8 +35,8 @@ struct PassContext {
 // Binds ctx.pipeline and the set and dispatches ctx.pass's rule.
 void dispatchPass(const PassContext& ctx);
 
-// Pushes region as the pass's shd::FroxelRegionParams.
-void pushRegion(const PassContext& ctx, const FroxelRegion& region);
+// Pushes region as the pass's shd::FroxelRegionParams, loW in lo.w (the shadow volume's light).
+void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW = 0);
 
 // Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
 void recordShadowCells(const PassContext& ctx);

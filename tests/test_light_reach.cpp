@@ -187,10 +187,11 @@ TEST(LightReach, NoLayerForLightsThatReachNoMedia) {
     EXPECT_EQ(buildLightReach(cs, frame, clusters, true, /*surfaces=*/false).shadowVolume, (std::vector<int>{1, 0}));
 }
 
-// The composite's glow loops over the glowing lights only (shared/glow.h, composite.comp), so that
-// lights that reach no fog cost no loop trip: with a box as the only volume, the point light inside
+// The glow pass is dispatched over the glowing lights only (shared/glow.h, gpu/pass_glow.cpp), so that
+// lights that reach no fog cost nothing: with a box as the only volume, the point light inside
 // it glows, the one whose range stops short of it does not, nor the sun (no glow radius); without
-// culling every light with a glow radius is listed. The record carries the list after the layers.
+// culling every light with a glow radius is listed. The GPU's record carries the surface lights only:
+// the glow pass is dispatched per listed light by the host.
 TEST(LightReach, GlowOnlyForLightsWhoseRangeReachesAVolume) {
     Scene s = reachScene();
     s.volumes = {test::boxFog({-2.0f, 0.5f, 0.0f}, vec3(1.0f), 0.1f, 0.2f, 0.05f)};
@@ -204,7 +205,7 @@ TEST(LightReach, GlowOnlyForLightsWhoseRangeReachesAVolume) {
     EXPECT_EQ(reach.glowLights, (std::vector<int>{1}));
     EXPECT_EQ(buildLightReach(cs, frame, clusters, /*culling=*/false).glowLights, (std::vector<int>{1, 2}));
     const std::vector<int> record = lightReachRecord(reach, cs.lights.size());
-    ASSERT_EQ(record.size(), 3 + 3 * cs.lights.size());
-    EXPECT_EQ(record[2 + 2 * cs.lights.size()], 1);
-    EXPECT_EQ(record[3 + 2 * cs.lights.size()], 1);
+    ASSERT_EQ(record.size(), 1 + cs.lights.size());
+    ASSERT_EQ(record[0], static_cast<int>(reach.surfaceLights.size()));
+    for (size_t k = 0; k < reach.surfaceLights.size(); ++k) EXPECT_EQ(record[1 + k], reach.surfaceLights[k]);
 }

@@ -279,3 +279,19 @@ TEST(MediaRegion, ShadowCellsHoldEveryCellTheLightPassReads) {
     EXPECT_EQ(all.lo, glm::ivec3(0));
     EXPECT_EQ(all.hi, shd::shadowVolumeDims(glm::ivec3(f.froxelDims), 2));
 }
+
+// regionUnion (the shadow volume's per-light boxes, core/light_reach.h listedFroxelRegions): the
+// smallest box holding both, an empty region adding nothing whatever its corners.
+TEST(MediaRegion, UnionHoldsBothAndIgnoresEmptyRegions) {
+    const FroxelRegion a{glm::ivec3(1, 2, 3), glm::ivec3(4, 5, 6)};
+    const FroxelRegion b{glm::ivec3(3, 0, 5), glm::ivec3(7, 3, 9)};
+    const FroxelRegion u = regionUnion(a, b);
+    EXPECT_EQ(u.lo, glm::ivec3(1, 0, 3));
+    EXPECT_EQ(u.hi, glm::ivec3(7, 5, 9));
+    EXPECT_TRUE(regionContains(u, a) && regionContains(u, b));
+    // Empty regions with corners far outside: they must not stretch the box.
+    const FroxelRegion farEmpty{glm::ivec3(-50), glm::ivec3(-60)};
+    EXPECT_EQ(regionUnion(a, farEmpty).lo, a.lo);
+    EXPECT_EQ(regionUnion(farEmpty, a).hi, a.hi);
+    EXPECT_TRUE(regionUnion(farEmpty, FroxelRegion{}).empty());
+}

@@ -31,13 +31,10 @@ BRUME_FUNC int clusterRecord(ivec3 froxel, ivec3 froxelDims) {
     return ((c.z * d.y + c.y) * d.x + c.x) * CLUSTER_STRIDE;
 }
 
-// After the cluster records, the frame's light reach (core/light_reach.h), 2 + 2 x lights ints:
-//   [0] n surface lights, [1..n] their indices, directional ones first, each group ascending (the
-//   geometry and composite passes' loops),
-//   [1 + lights] m, [2 + lights..] the m lights whose transmittance layer is computed, ascending
-//   (no shader reads it now: the host dispatches the shadow volume pass once per such layer),
-//   [2 + 2 x lights] g, [3 + 2 x lights..] the g lights whose glow the composite adds, ascending;
-//   3 + 3 x lights ints in all.
+// After the cluster records, the frame's surface lights (core/light_reach.h lightReachRecord), 1 +
+// lights ints: [0] n, [1..n] their indices, directional ones first, each group ascending (the geometry
+// and distant fog passes' loops). The transmittance layers and the glowing lights stay on the host,
+// which dispatches the shadow volume pass per layer and the glow pass per light.
 BRUME_FUNC int lightReachOffset(ivec3 froxelDims) {
     ivec3 d = clusterDims(froxelDims);
     return d.x * d.y * d.z * CLUSTER_STRIDE;

@@ -42,8 +42,6 @@ BRUME_FUNC float heightExponentialLength(float y0, float dy, float len, float ba
     return below + exp(-f * (yLow - base)) * above * slabPhi(f * abs(dy) * above);
 }
 
-// Integral of clamp(1 - max(y(s) - base, 0) / h, 0, 1) over s in [0, len]: the density is linear in s
-// between the crossings of base and base + h, so the midpoint rule on those pieces is exact.
 // One piece [a, b] of heightLinearLength, on which the density is linear: its length x its middle's.
 BRUME_FUNC float heightLinearPiece(float y0, float dy, float base, float h, float a, float b) {
     float mid = 0.5f * (a + b);
@@ -51,7 +49,9 @@ BRUME_FUNC float heightLinearPiece(float y0, float dy, float base, float h, floa
     return (b - a) * density;
 }
 
-// (The three pieces written out rather than a loop over an array of edges, which lavapipe ran lane by
+// Integral of clamp(1 - max(y(s) - base, 0) / h, 0, 1) over s in [0, len]: the density is linear in s
+// between the crossings of base and base + h, so the midpoint rule on those pieces is exact. (The
+// three pieces written out rather than a loop over an array of edges, which lavapipe ran lane by
 // lane: docs/performance.md, "pixel, round seven".)
 BRUME_FUNC float heightLinearLength(float y0, float dy, float len, float base, float h) {
     float c0 = heightCrossing(y0, dy, len, base);
