@@ -90,7 +90,7 @@ const std::array<PassDecl, 14> kPasses{{
     // added to the output over each glowing light's screen rectangle only.
     {"glow", "glow", Variant::None, Dispatch::GlowRects, When::Always, Record::Glow,
      {B::frame, T::lightTexels, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG,
-      historyOut(H::historyExtinction), I::outputImage},
+      historyOut(H::historySource), historyOut(H::historyExtinction), I::outputImage},
      {I::outputImage}},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,
@@ -105,6 +105,7 @@ VkFormat vkFormat(ImageFormat f) {
         case ImageFormat::r32f: return VK_FORMAT_R32_SFLOAT;
         case ImageFormat::r32i: return VK_FORMAT_R32_SINT;
         case ImageFormat::rgba32i: return VK_FORMAT_R32G32B32A32_SINT;
+        case ImageFormat::rg32f: return VK_FORMAT_R32G32_SFLOAT;
         case ImageFormat::rgba32f: break;
     }
     return VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -112,7 +113,7 @@ VkFormat vkFormat(ImageFormat f) {
 
 VkDeviceSize texelBytes(ImageFormat f) {
     if (f == ImageFormat::r32f || f == ImageFormat::r32i) return 4;
-    return f == ImageFormat::rgba16 ? 8 : 16;
+    return f == ImageFormat::rgba16 || f == ImageFormat::rg32f ? 8 : 16;
 }
 
 VkDescriptorType descriptorType(BufferKind k) {

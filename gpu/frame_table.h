@@ -46,7 +46,7 @@ enum class TexelViewId : uint8_t {
 enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBACK, STORAGE_INDIRECT };
 // r32i and rgba32i: texel views only (lightClusters, lights as their stored bits). rgba16: 16-bit
 // unsigned normalized, for a froxel volume in [0, 1] (shared/frame_table.h: the integrated transmittance).
-enum class ImageFormat : uint8_t { rgba32f, rgba16, r32f, r32i, rgba32i };
+enum class ImageFormat : uint8_t { rgba32f, rgba16, r32f, r32i, rgba32i, rg32f };
 enum class ImageShape : uint8_t { image2D, image3D };
 namespace image_flags {
 inline constexpr unsigned FRAME = 1u, READBACK = 2u, TARGET = 4u, OUTPUT = 8u;

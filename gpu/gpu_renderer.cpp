@@ -58,6 +58,10 @@ Result<void> GpuRenderer::State::createPasses() {
             return Error{"The Vulkan device " + device->name() +
                          " cannot use 32-bit float and 16-bit normalized images as storage and render targets, "
                          "which brume needs."};
+    for (const HistoryDecl& d : kHistory)
+        if (!device->supportsFormat(vkFormat(d.format), VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
+            return Error{"The Vulkan device " + device->name() +
+                         " cannot use two-channel 32-bit float images as storage images, which brume needs."};
     if (!device->storageImageExtendedFormats())
         return Error{"The Vulkan device " + device->name() +
                      " has no storage images in 16-bit normalized formats (shaderStorageImageExtendedFormats), "
@@ -130,9 +134,25 @@ Result<void> checkLimits(const Device& device, int width, int height, glm::ivec3
     return {};
 }
 
-// A froxel volume copied from an rgba32f image, or from an rgba16 one (unsigned normalized: k / 65535).
+// The resolved S and sigma_t come back as the history's two texels (frame_table.h: S.rgb and
+// sigma_t.r, then sigma_t.gb); each is (rgb, 0) again after this.
+void unpackHistory(std::vector<glm::vec4>& source, std::vector<glm::vec4>& extinction) {
+    for (size_t i = 0; i < source.size() && i < extinction.size(); ++i) {
+        extinction[i] = glm::vec4(source[i].w, extinction[i].x, extinction[i].y, 0.0f);
+        source[i].w = 0.0f;
+    }
+}
+
+// A froxel volume copied from an rgba32f image, an rg32f one ((r, g, 0, 0)), or an rgba16 one
+// (unsigned normalized: k / 65535).
 std::vector<glm::vec4> readVolume(const Buffer& b, glm::ivec3 dims, VkFormat format) {
     const size_t n = static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * static_cast<size_t>(dims.z);
+    if (format == VK_FORMAT_R32G32_SFLOAT) {
+        const auto* p = static_cast<const glm::vec2*>(b.mapped);
+        std::vector<glm::vec4> out(n);
+        for (size_t i = 0; i < n; ++i) out[i] = glm::vec4(p[i], 0.0f, 0.0f);
+        return out;
+    }
     if (format != VK_FORMAT_R16G16B16A16_UNORM) {
         const auto* p = static_cast<const glm::vec4*>(b.mapped);
         return std::vector<glm::vec4>(p, p + n);
@@ -463,6 +483,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         const std::array<std::vector<glm::vec4>*, 6> dst{&v.mediaScatteringG, &v.mediaExtinction, &v.mediaEmission,
                                                           &v.source, &v.integratedScattering, &v.integratedTransmittance};
         for (size_t i = 0; i < dst.size() && i < r.volumeReadback.size(); ++i) *dst[i] = readVolume(r.volumeReadback[i], dims, r.volumeReadbackFormat[i]);
+        unpackHistory(v.source, v.mediaExtinction);
         v.litFroxels = out.litFroxels;
         v.skippedFroxels = out.skippedFroxels;
         v.overfullClusters = out.overfullClusters;

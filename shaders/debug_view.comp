@@ -11,9 +11,10 @@ layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_
 layout(push_constant) uniform DebugBlock { DebugViewParams debugParams; };
 
 vec4 debugTexel(ivec3 froxel, int view) {
-    // The resolved sigma_t and S: the history's *_OUT side (integrate.comp).
-    if (view == DEBUG_VIEW_DENSITY) return imageLoad(historyExtinctionOut, froxel);
-    if (view == DEBUG_VIEW_SCATTERING) return imageLoad(historySourceOut, froxel);
+    // The resolved sigma_t and S: the history's *_OUT side (integrate.comp; the layout: resources.glsl).
+    vec4 a = imageLoad(historySourceOut, froxel);
+    if (view == DEBUG_VIEW_DENSITY) return historyExtinctionOf(a, imageLoad(historyExtinctionOut, froxel));
+    if (view == DEBUG_VIEW_SCATTERING) return historySourceOf(a);
     return imageLoad(integratedTransmittance, froxel);
 }
 

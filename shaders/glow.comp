@@ -51,7 +51,8 @@ void main() {
     if (r.radius <= 0.0f) return;
     ivec3 m = lightGlowFroxel(r, origin, dir, frame);
     vec4 scatteringG = imageLoad(mediaScatteringG, m);
-    vec3 sigmaT = imageLoad(historyExtinctionOut, m).rgb;  // the resolved sigma_t (integrate.comp)
+    // The resolved sigma_t (integrate.comp), in the history's two texels (resources.glsl).
+    vec3 sigmaT = historyExtinctionOf(imageLoad(historySourceOut, m), imageLoad(historyExtinctionOut, m)).rgb;
     vec3 toEnter = integratedTransmittanceAt(pixel, r.enter / rayPerDepth);
     vec3 sum = toEnter * scatteringG.rgb * lightGlowPerSigmaS(l, r, origin, dir, sigmaT, scatteringG.a);
     imageStore(outputImage, px, vec4(imageLoad(outputImage, px).rgb + sum, 1.0f));

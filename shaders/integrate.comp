@@ -34,15 +34,17 @@ void main() {
         float d = (zFar - zNear) * rayScale;
         zNear = zFar;
 #ifdef BRUME_TEMPORAL_REST
-        vec4 source = resolveTemporalAtRest(imageLoad(sourceImage, id), imageLoad(historySourceIn, id), frame.temporal.x);
-        vec4 extinction =
-            resolveTemporalAtRest(imageLoad(mediaExtinction, id), imageLoad(historyExtinctionIn, id), frame.temporal.x);
-        imageStore(historySourceOut, id, source);
-        imageStore(historyExtinctionOut, id, extinction);
+        vec4 a = imageLoad(historySourceIn, id);
+        vec4 b = imageLoad(historyExtinctionIn, id);
+        vec4 source = resolveTemporalAtRest(imageLoad(sourceImage, id), historySourceOf(a), frame.temporal.x);
+        vec4 extinction = resolveTemporalAtRest(imageLoad(mediaExtinction, id), historyExtinctionOf(a, b), frame.temporal.x);
+        imageStore(historySourceOut, id, historyTexelA(source, extinction));
+        imageStore(historyExtinctionOut, id, historyTexelB(extinction));
         acc = accumulateSlab(acc, source.rgb, extinction.rgb, d);
 #else
         // In motion the temporal pass wrote the resolved S and sigma_t to the history's *_OUT side.
-        acc = accumulateSlab(acc, imageLoad(historySourceOut, id).rgb, imageLoad(historyExtinctionOut, id).rgb, d);
+        vec4 a = imageLoad(historySourceOut, id);
+        acc = accumulateSlab(acc, a.rgb, historyExtinctionOf(a, imageLoad(historyExtinctionOut, id)).rgb, d);
 #endif
         imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
         imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));

@@ -63,4 +63,13 @@ BRUME_FRAME_IMAGES(BRUME_GLSL_IMAGE)
     layout(set = 0, binding = inBinding, format) uniform type inName; \
     layout(set = 0, binding = outBinding, format) uniform type outName;
 BRUME_FRAME_HISTORY(BRUME_GLSL_HISTORY)
+
+// The temporal history's layout (frame_table.h BRUME_FRAME_HISTORY): one froxel's resolved S and
+// sigma_t, each (rgb, alpha 0), in two texels, historySource* (rgba32f: S.rgb, sigma_t.r) and
+// historyExtinction* (rg32f: sigma_t.g, sigma_t.b). historyTexelA / B pack them, historySourceOf /
+// historyExtinctionOf give them back bit for bit.
+vec4 historyTexelA(vec4 source, vec4 extinction) { return vec4(source.rgb, extinction.r); }
+vec4 historyTexelB(vec4 extinction) { return vec4(extinction.gb, 0.0f, 0.0f); }
+vec4 historySourceOf(vec4 a) { return vec4(a.rgb, 0.0f); }
+vec4 historyExtinctionOf(vec4 a, vec4 b) { return vec4(a.a, b.rg, 0.0f); }
 #endif

@@ -32,25 +32,28 @@ Bounds neighbourhood(ivec3 c, int which) {
     return b;
 }
 
-HistorySample readHistory(HistoryTaps k, int which) {
-    HistorySample h = emptyHistorySample();
+// The history read for S and for sigma_t; each corner's two texels (resources.glsl: the layout) are
+// loaded once for both.
+void readHistory(HistoryTaps k, inout HistorySample source, inout HistorySample extinction) {
     for (int corner = 0; corner < 8; ++corner) {
         ivec3 c = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
         ivec3 at = ivec3(c.x == 1 ? k.hi.x : k.lo.x, c.y == 1 ? k.hi.y : k.lo.y, c.z == 1 ? k.hi.z : k.lo.z);
-        vec4 v = which == 0 ? imageLoad(historySourceIn, at) : imageLoad(historyExtinctionIn, at);
-        h = addHistoryTap(h, v, c, k.fractions);
+        vec4 a = imageLoad(historySourceIn, at);
+        vec4 b = imageLoad(historyExtinctionIn, at);
+        source = addHistoryTap(source, historySourceOf(a), c, k.fractions);
+        extinction = addHistoryTap(extinction, historyExtinctionOf(a, b), c, k.fractions);
     }
-    return h;
 }
 
 void main() {
     ivec3 id = region.lo.xyz + ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(id, region.hi.xyz))) return;
     HistoryTaps k = historyTaps(id, frame, previousFrame, frame.temporal.x);
-    bool read = k.weight > 0.0f;
-    HistorySample histS = read ? readHistory(k, 0) : emptyHistorySample();
-    HistorySample histE = read ? readHistory(k, 1) : emptyHistorySample();
-    imageStore(historySourceOut, id, resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight, true));
-    imageStore(historyExtinctionOut, id,
-               resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, true));
+    HistorySample histS = emptyHistorySample();
+    HistorySample histE = emptyHistorySample();
+    if (k.weight > 0.0f) readHistory(k, histS, histE);
+    vec4 source = resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight, true);
+    vec4 extinction = resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, true);
+    imageStore(historySourceOut, id, historyTexelA(source, extinction));
+    imageStore(historyExtinctionOut, id, historyTexelB(extinction));
 }

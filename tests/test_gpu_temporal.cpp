@@ -111,6 +111,60 @@ TEST(GpuTemporal, MatchesTheCpuFrameByFrameThroughMotionEditsAndRestarts) {
     EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
 }
 
+// The history keeps S and sigma_t in two texels, sigma_t's red channel beside S (shaders/shared/
+// frame_table.h). Grey media would hide a channel packed in the wrong place, so here the box's
+// sigma_t is 4:2:1 and its albedo differs per channel; the resolved S and sigma_t read back, the
+// integrated scattering and the image follow the CPU through frames in motion (temporal pass) and at
+// rest (integrate_rest).
+TEST(GpuTemporal, ColouredMediaKeepEveryChannelThroughTheHistory) {
+    GpuOptions options;
+    options.validation = true;
+    auto created = GpuRenderer::create(options);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    GpuRenderer& gpu = *created.value();
+    FroxelCpuRenderer cpu;
+    Scene base = temporalScene();
+    base.volumes[0].medium.scattering = {0.05f, 0.03f, 0.018f};
+    base.volumes[0].medium.absorption = {0.03f, 0.01f, 0.002f};
+    base.volumes[1].medium.scattering = {0.004f, 0.012f, 0.02f};
+    RenderRequest req;
+    req.width = 96;
+    req.height = 54;
+    req.threads = 2;
+    req.history = HistoryMode::Continue;
+    double worst = 0.0;
+    for (int n = 0; n < 10; ++n) {
+        Scene s = base;
+        s.camera = orbitCamera(base.camera, 3.0f * static_cast<float>(std::min(n, 5)));  // rests from frame 6
+        const FroxelResult c = cpu.render(s, req);
+        auto g = gpu.render(s, req, true);
+        ASSERT_TRUE(g.ok()) << g.error().message;
+        const FroxelVolumes& gv = g.value().volumes;
+        ASSERT_EQ(gv.dims, c.volumes.dims);
+        const double errors[] = {
+            relativeMeanAbsError(asImage(gv.source), asImage(c.volumes.source)),
+            relativeMeanAbsError(asImage(gv.mediaExtinction), asImage(c.volumes.mediaExtinction)),
+            relativeMeanAbsError(asImage(gv.integratedScattering), asImage(c.volumes.integratedScattering)),
+            relativeMeanAbsError(g.value().image, c.image)};
+        for (double e : errors) EXPECT_LT(e, kTolerance) << "frame " << n;
+        for (double e : errors) worst = std::max(worst, e);
+        // Most froxels' sigma_t has three distinct channels (a third apart at least), and the alphas the
+        // layout leaves out read back as 0.
+        size_t coloured = 0;
+        for (size_t i = 0; i < gv.mediaExtinction.size(); ++i) {
+            const glm::vec4 e = gv.mediaExtinction[i];
+            const float lo = std::min({e.r, e.g, e.b}), hi = std::max({e.r, e.g, e.b});
+            if (hi > 0.0f && hi - lo > hi / 3.0f) ++coloured;
+            ASSERT_EQ(e.a, 0.0f) << "froxel " << i;
+            ASSERT_EQ(gv.source[i].a, 0.0f) << "froxel " << i;
+        }
+        EXPECT_GT(coloured, gv.mediaExtinction.size() / 2) << "frame " << n;
+    }
+    std::printf("[gpu-vs-cpu temporal] coloured media, 10 frames: worst relative mean abs error %.2e\n", worst);
+    const std::vector<std::string> messages = gpu.validationMessages();
+    EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+}
+
 TEST(GpuTemporal, FramesOptionAccumulatesLikeTheCpu) {
     GpuOptions options;
     options.validation = true;

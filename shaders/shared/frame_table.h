@@ -128,8 +128,13 @@
 // X(id, input name, input binding, output name, output binding, glsl format, glsl type).
 // Each frame reads the pair's *_IN side (what the previous frame wrote) and writes its *_OUT side;
 // the renderer swaps which image sits behind each binding every frame.
+//   historySource          rgb the resolved source S, a sigma_t.r   (temporal in motion, integrate at rest)
+//   historyExtinction      rg the resolved sigma_t.g, sigma_t.b
+// S's and sigma_t's alpha is 0, so one froxel's 7 numbers take 6 words, not 8: 25% fewer words stored
+// and loaded per froxel, in the two passes that are lavapipe's store loops (docs/performance.md,
+// "history"). resources.glsl packs and unpacks them; the read-back volumes unpack them on the host.
 #define BRUME_FRAME_HISTORY(X) \
     X(historySource, historySourceIn, 19, historySourceOut, 20, rgba32f, image3D) \
-    X(historyExtinction, historyExtinctionIn, 21, historyExtinctionOut, 22, rgba32f, image3D)
+    X(historyExtinction, historyExtinctionIn, 21, historyExtinctionOut, 22, rg32f, image3D)
 
 #endif
