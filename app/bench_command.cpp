@@ -179,20 +179,23 @@ CommandResult runBench(const BenchOptions& o) {
                 last.froxelDims.z, o.frames, o.warmup, motion.c_str());
     double passSum = 0.0;
     for (const std::string& name : order) passSum += median(passMs[name]);
+    // The first column as wide as the longest pass name ("composite all far").
+    int w = 12;
+    for (const std::string& name : order) w = std::max(w, static_cast<int>(name.size()));
     if (!order.empty()) {
-        std::printf("%-12s %10s %10s %10s %8s%s\n", "pass", "median ms", "min ms", "max ms", "share",
+        std::printf("%-*s %10s %10s %10s %8s%s\n", w, "pass", "median ms", "min ms", "max ms", "share",
                     baseline ? "  /baseline" : "");
         for (const std::string& name : order) {
             const std::vector<double>& v = passMs[name];
             const double m = median(v);
-            std::printf("%-12s %10.3f %10.3f %10.3f %7.1f%%%s\n", name.c_str(), m, *std::min_element(v.begin(), v.end()),
+            std::printf("%-*s %10.3f %10.3f %10.3f %7.1f%%%s\n", w, name.c_str(), m, *std::min_element(v.begin(), v.end()),
                         *std::max_element(v.begin(), v.end()), passSum > 0.0 ? 100.0 * m / passSum : 0.0,
                         ratioText(m, baseline, name).c_str());
         }
-        std::printf("%-12s %10.3f   (sum of pass medians; wall/GPU ratio %.2f)\n", "gpu total", passSum,
+        std::printf("%-*s %10.3f   (sum of pass medians; wall/GPU ratio %.2f)\n", w, "gpu total", passSum,
                     passSum > 0.0 ? wallMedian / passSum : 0.0);
     }
-    std::printf("%-12s %10.3f   (median wall clock per render)\n", "wall", wallMedian);
+    std::printf("%-*s %10.3f   (median wall clock per render)\n", w, "wall", wallMedian);
     if (baseline) {
         std::printf("baseline %s: wall %.3f ms, this run / baseline %.3fx (below 1 is faster)\n", o.baselinePath.c_str(),
                     baseline->wallMs, wallMedian / baseline->wallMs);

@@ -349,10 +349,11 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
     const glm::ivec2 tiles = shd::depthTileCount(size);
-    BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(float), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(glm::vec2), dirty));
     const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
     BRUME_TRY(ensureBuffer(BufferId::nearTiles, tileList, dirty));
     BRUME_TRY(ensureBuffer(BufferId::farTiles, tileList, dirty));
+    BRUME_TRY(ensureBuffer(BufferId::allFarTiles, tileList, dirty));
     BRUME_TRY(ensureTexelViews(dirty));
     if (dirty) {
         writeDescriptorBindings(*device, bindings.set, res);
@@ -455,6 +456,7 @@ void dispatchPass(const PassContext& ctx) {
             break;
         }
         case Dispatch::FarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::farTiles].buffer.get(), 0); break;
+        case Dispatch::AllFarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::allFarTiles].buffer.get(), 0); break;
         case Dispatch::Single:
             if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
             break;

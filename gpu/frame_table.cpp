@@ -17,7 +17,7 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 14> kPasses{{
+const std::array<PassDecl, 15> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
@@ -72,10 +72,10 @@ const std::array<PassDecl, 14> kPasses{{
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, B::depthTiles},
      {B::distantTable}, true},
-    // With distant fog, the tiles within the froxel far and the others, as two indirect dispatches
-    // (one invocation walks the depth tiles: tile_lists.comp).
+    // With distant fog, the tiles within the froxel far, those past it and the others, as three
+    // indirect dispatches (one invocation walks the depth tiles: tile_lists.comp).
     {"tile lists", "tile_lists", Variant::None, Dispatch::Single, When::Always, Record::Dispatch,
-     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles}, true},
+     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles, B::allFarTiles}, true},
     // Fog over the surfaces from the integrated volume: the region's pixels, or with distant fog the
     // near tiles (composite_body.glsl).
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
@@ -84,6 +84,11 @@ const std::array<PassDecl, 14> kPasses{{
     // The far tiles: fog continued past the froxel far from the distant fog table.
     {"composite far", "composite_far", Variant::None, Dispatch::FarTiles, When::Always, Record::Dispatch,
      {B::frame, B::farTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
+      I::sceneDepth},
+     {I::outputImage}, true},
+    // The tiles wholly past the froxel far: as the far tiles, the integrated volume's last entry read once.
+    {"composite all far", "composite_all_far", Variant::None, Dispatch::AllFarTiles, When::Always, Record::Dispatch,
+     {B::frame, B::allFarTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
@@ -166,7 +171,8 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::CompositePixels)
+    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::AllFarTiles ||
+        p.dispatch == Dispatch::CompositePixels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }

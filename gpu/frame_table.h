@@ -190,6 +190,7 @@ enum class Dispatch : uint8_t {
     CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*;
                       // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
     FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
+    AllFarTiles,  // one workgroup per allFarTiles entry (indirect; shaders/tile_lists.comp)
     Single,       // one invocation, with distant fog only (the tile lists)
     ShadowCells,  // one per shadow volume cell some reader needs, a dispatch per layer (FrameResources::shadowLayers)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
@@ -263,7 +264,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 14> kPasses;
+extern const std::array<PassDecl, 15> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -3,11 +3,14 @@
 // continued to the surface with the distant fog table (shared/distant_table.h, distant_fog.comp).
 // The lights' glow is added after it by glow.comp, over the pixels near each glowing light only.
 //
-// Two builds of this body: composite.comp without the distant fog table's lookup, over the region's
+// Three builds of this body: composite.comp without the distant fog table's lookup, over the region's
 // pixels or (with distant fog) the tiles whose pixels all lie within the froxel far; composite_far.comp
-// (BRUME_COMPOSITE_FAR) with it, over the other tiles (tile_lists.comp). Lavapipe runs an untaken branch
-// under a mask, so a single shader paid for the 16 table reads on every pixel (docs/performance.md,
-// "pixel"); split by tile, each pixel computes exactly what the single shader computed.
+// (BRUME_COMPOSITE_FAR) with it, over the tiles that straddle the far; composite_all_far.comp (both
+// defines) with it and one entry of the integrated volume, over the tiles whose pixels all lie past
+// the far (tile_lists.comp). Lavapipe runs an untaken branch under a mask, so a single shader paid for
+// the 16 table reads on every pixel (docs/performance.md, "pixel"), and the far one for 8 integrated
+// loads that an all-far pixel reads twice ("allfar"); split by tile, each pixel computes exactly what
+// the single shader computed.
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
 // The pixels composited, [lo.xy, hi.xy): those whose lookups can read a froxel column of the temporal
@@ -27,7 +30,14 @@ Accumulated integratedAt(int x, int y, int s) {
 Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
     IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
     Accumulated byEntry[2];
-    for (int e = 0; e < 2; ++e) {
+#ifdef BRUME_COMPOSITE_ALL_FAR
+    // Every pixel of an all-far tile reads the last entry twice (tile_lists.comp): the same 8 loads and
+    // blends give byEntry[1] bit for bit.
+    const int entriesRead = 1;
+#else
+    const int entriesRead = 2;
+#endif
+    for (int e = 0; e < entriesRead; ++e) {
         int s = k.entries[e];
         Accumulated row0 = mixAccumulated(integratedAt(k.columns.x, k.columns.y, s),
                                           integratedAt(k.columns.z, k.columns.y, s), k.weights.x);
@@ -35,6 +45,9 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
                                           integratedAt(k.columns.z, k.columns.w, s), k.weights.x);
         byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
     }
+#ifdef BRUME_COMPOSITE_ALL_FAR
+    byEntry[1] = byEntry[0];
+#endif
     Accumulated entries = mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
     return mixAccumulated(emptyAccumulated(), entries, k.entryWeight);
 }
@@ -71,7 +84,9 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
 // The pixel this invocation composites: with distant fog (SPEC_DISTANT_FOG), the workgroup's 8x8 tile
 // from the list of its variant (tile_lists.comp); else the region's pixels (the push constants).
 ivec2 compositePixel() {
-#ifdef BRUME_COMPOSITE_FAR
+#if defined(BRUME_COMPOSITE_ALL_FAR)
+    uint tile = allFarTileIndex[gl_WorkGroupID.x];
+#elif defined(BRUME_COMPOSITE_FAR)
     uint tile = farTileIndex[gl_WorkGroupID.x];
 #else
     uint tile = nearTileIndex[gl_WorkGroupID.x];

@@ -1,7 +1,8 @@
-// The deepest view depth of each 8x8 pixel tile of the scene depth (shared/distant_table.h
-// depthTileIndex), with distant fog only: the distant fog pass takes each table corner's deepest pixel
-// from its (at most 4) tiles instead of reading its 16x16 pixels itself (every pixel read once instead
-// of 4 times), and the tile lists pass sorts the tiles for the composite (docs/performance.md, "pixel").
+// The deepest and the shallowest view depth of each 8x8 pixel tile of the scene depth (shared/
+// distant_table.h depthTileIndex), with distant fog only: the distant fog pass takes each table
+// corner's deepest pixel from its (at most 4) tiles instead of reading its 16x16 pixels itself (every
+// pixel read once instead of 4 times), and the tile lists pass sorts the tiles for the composite by
+// both (docs/performance.md, "pixel" and "allfar").
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
@@ -19,10 +20,14 @@ void main() {
     ivec2 first = t * DISTANT_TILE_PX;
     ivec2 last = frame.counts.xy - 1;
     // Fixed trip counts (unrolled), the coordinates held at the image's last row and column: a tile cut
-    // by the edge reads its edge pixels again, which leaves the maximum as it is.
+    // by the edge reads its edge pixels again, which leaves the maximum and the minimum as they are.
     float deepest = 0.0f;
+    float shallowest = BRUME_HUGE;
     for (int y = 0; y < DISTANT_TILE_PX; ++y)
-        for (int x = 0; x < DISTANT_TILE_PX; ++x)
-            deepest = max(deepest, imageLoad(sceneDepth, min(first + ivec2(x, y), last)).r);
-    depthTileMax[depthTileIndex(tiles, t)] = deepest;
+        for (int x = 0; x < DISTANT_TILE_PX; ++x) {
+            float depth = imageLoad(sceneDepth, min(first + ivec2(x, y), last)).r;
+            deepest = max(deepest, depth);
+            shallowest = min(shallowest, depth);
+        }
+    depthTileRange[depthTileIndex(tiles, t)] = vec2(deepest, shallowest);
 }

@@ -43,6 +43,11 @@ BRUME_FUNC ivec2 depthTileCount(ivec2 size) {
 
 BRUME_FUNC int depthTileIndex(ivec2 tiles, ivec2 t) { return t.y * tiles.x + t.x; }
 
+// A tile whose shallowest pixel lies past the froxel far by this fraction of it goes to the composite
+// all far (tile_lists.comp): every pixel's sliceTFromViewDepth is then clamped to exactly 1, even if
+// the division were rounded a few ulps low, so each reads the integrated volume's last entry alone.
+BRUME_CONST float DISTANT_ALL_FAR_MARGIN = 1.0e-3f;
+
 // Entries per corner this frame: 0 when the froxels reach the camera far (no distant fog).
 BRUME_FUNC int distantTableEntries(FrameUniforms f) {
     float froxelFar = f.froxelRange.y;

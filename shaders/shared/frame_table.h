@@ -33,9 +33,10 @@
     X(exactList, 23, STORAGE_INDIRECT, std430, buffer, ExactListBlock, ExactListHeader exactList; uint exactFroxels[];) \
     X(distantTable, 24, STORAGE_GPU, std430, buffer, DistantTableBlock, vec4 distantTable[];) \
     X(influence, 25, STORAGE, std430, readonly buffer, InfluenceBlock, InfluenceHeader influenceHeader; InfluenceSample influenceSamples[];) \
-    X(depthTiles, 31, STORAGE_GPU, std430, buffer, DepthTileBlock, float depthTileMax[];) \
+    X(depthTiles, 31, STORAGE_GPU, std430, buffer, DepthTileBlock, vec2 depthTileRange[];) \
     X(nearTiles, 32, STORAGE_INDIRECT, std430, buffer, NearTileBlock, ExactListHeader nearTileList; uint nearTileIndex[];) \
-    X(farTiles, 33, STORAGE_INDIRECT, std430, buffer, FarTileBlock, ExactListHeader farTileList; uint farTileIndex[];)
+    X(farTiles, 33, STORAGE_INDIRECT, std430, buffer, FarTileBlock, ExactListHeader farTileList; uint farTileIndex[];) \
+    X(allFarTiles, 35, STORAGE_INDIRECT, std430, buffer, AllFarTileBlock, ExactListHeader allFarTileList; uint allFarTileIndex[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -57,13 +58,16 @@
 //                       by the distant fog pass, read by the composite
 //   influence           InfluenceHeader, then InfluenceSample[] (influence.h): the influencers and
 //                       their wakes at the scene time (core/influence.h), read by voxelize
-//   depthTiles          float[]: the deepest view depth of each 8x8 pixel tile (distant_table.h
-//                       depthTileIndex), written by the depth tiles pass when the scene has distant
-//                       fog, read by the distant fog pass and the tile lists pass
-//   nearTiles, farTiles ExactListHeader (the indirect dispatch: one workgroup per tile), then uint[]:
-//                       the tiles (depthTileIndex) whose pixels all lie within the froxel far, and
-//                       the others; written by the tile lists pass, dispatched over by the composite
-//                       (near: no distant fog code) and the composite far (composite_body.glsl)
+//   depthTiles          vec2[]: the deepest (x) and shallowest (y) view depth of each 8x8 pixel tile
+//                       (distant_table.h depthTileIndex), written by the depth tiles pass when the
+//                       scene has distant fog, read by the distant fog pass (x) and the tile lists pass
+//   nearTiles, farTiles, allFarTiles
+//                       ExactListHeader (the indirect dispatch: one workgroup per tile), then uint[]:
+//                       the tiles (depthTileIndex) whose pixels all lie within the froxel far, those
+//                       whose pixels all lie past it (allFar: clear of it by DISTANT_ALL_FAR_MARGIN),
+//                       and the others; written by the tile lists pass, dispatched over by the
+//                       composite (near: no distant fog code), the composite all far (one entry of the
+//                       integrated volume, its last) and the composite far (composite_body.glsl)
 
 // Uniform texel buffer views of the buffers above, X(id, binding, viewed buffer, texel format): GLSL
 // reads them with texelFetch (a samplerBuffer, an isamplerBuffer for the r32i and rgba32i formats:
