@@ -17,6 +17,7 @@ BRUME_PACKAGES=(
   libglm-dev libimgui-dev libglfw3-dev libstb-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev
   xvfb xauth xdotool
+  python3  # bench/compare_builds.py (A/B timing of builds) and its test
   slurm-wlm  # tests/slurm_farm.sh: a one-node Slurm on localhost (32 s to install, daemons up in 1 s)
   clang libclang-rt-14-dev
 )
