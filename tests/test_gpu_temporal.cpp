@@ -116,12 +116,10 @@ TEST(GpuTemporal, MatchesTheCpuFrameByFrameThroughMotionEditsAndRestarts) {
 // sigma_t is 4:2:1 and its albedo differs per channel; the resolved S and sigma_t read back, the
 // integrated scattering and the image follow the CPU through frames in motion (temporal pass) and at
 // rest (integrate_rest).
-TEST(GpuTemporal, ColouredMediaKeepEveryChannelThroughTheHistory) {
-    GpuOptions options;
-    options.validation = true;
-    auto created = GpuRenderer::create(options);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    GpuRenderer& gpu = *created.value();
+using GpuTemporalChannels = test::ValidatedGpuTest;  // its TearDown fails on any validation message
+
+TEST_F(GpuTemporalChannels, ColouredMediaKeepEveryChannelThroughTheHistory) {
+    GpuRenderer& gpu = *renderer;
     FroxelCpuRenderer cpu;
     Scene base = temporalScene();
     base.volumes[0].medium.scattering = {0.05f, 0.03f, 0.018f};
@@ -161,8 +159,6 @@ TEST(GpuTemporal, ColouredMediaKeepEveryChannelThroughTheHistory) {
         EXPECT_GT(coloured, gv.mediaExtinction.size() / 2) << "frame " << n;
     }
     std::printf("[gpu-vs-cpu temporal] coloured media, 10 frames: worst relative mean abs error %.2e\n", worst);
-    const std::vector<std::string> messages = gpu.validationMessages();
-    EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
 }
 
 TEST(GpuTemporal, FramesOptionAccumulatesLikeTheCpu) {
