@@ -26,6 +26,13 @@ def fail(message):
     sys.exit(2)
 
 
+class OneSentenceParser(argparse.ArgumentParser):
+    """argparse's errors as this script's: one sentence on stderr, exit status 2."""
+
+    def error(self, message):
+        fail(message[0].upper() + message[1:].rstrip(".") + " (see --help).")
+
+
 def parse_build(text):
     name, sep, rest = text.partition("=")
     if not sep or not name or not rest:
@@ -39,10 +46,12 @@ def parse_build(text):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("builds", nargs="+", metavar="NAME=BRUME[@SPV_DIR]")
+    p = OneSentenceParser(description="\n\n".join(__doc__.split("\n\n")[2:]), formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("builds", nargs="+", metavar="NAME=BRUME[@SPV_DIR]",
+                   help="a build: its name in the table, its brume binary, optionally a BRUME_SPV_DIR; the first is the baseline")
     p.add_argument("--scene", default="assets/scenes/default.json", help="scene file (default: %(default)s)")
-    p.add_argument("--quality", default="high", choices=["low", "medium", "high", "ultra"])
+    p.add_argument("--quality", default="high", choices=["low", "medium", "high", "ultra"],
+                   help="froxel quality preset (default: %(default)s)")
     p.add_argument("--width", type=int, default=1280, help="pixels (default: %(default)s)")
     p.add_argument("--height", type=int, default=720, help="pixels (default: %(default)s)")
     p.add_argument("--frames", type=int, default=3, help="timed renders per run (default: %(default)s)")

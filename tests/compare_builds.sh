@@ -2,7 +2,8 @@
 # bench/compare_builds.py (A/B timing of brume builds, docs/performance.md "How to measure"): two
 # builds (the same binary twice, one with an empty BRUME_SPV_DIR) at a tiny size give a table with
 # the wall and every pass of `brume bench`, each with a ratio and one per round; a missing binary,
-# a single build and a failing run are one sentence on stderr and exit 2. Timings are not asserted.
+# a single build, a bad option and a failing run are one sentence on stderr and exit 2. Timings are
+# not asserted.
 # Usage: compare_builds.sh BRUME_EXE SOURCE_DIR
 set -uo pipefail
 brume=$1 src=$2
@@ -32,6 +33,9 @@ check "with one sentence naming it" '[ "$(wc -l < "$work/err")" -eq 1 ] && grep 
 
 python3 bench/compare_builds.py "A=$brume" > "$work/out" 2> "$work/err"
 check "one build exits 2" '[ $? -eq 2 ] && [ "$(wc -l < "$work/err")" -eq 1 ]'
+
+python3 bench/compare_builds.py --quality bogus "A=$brume" "B=$brume" > "$work/out" 2> "$work/err"
+check "a bad option exits 2 with one sentence" '[ $? -eq 2 ] && [ "$(wc -l < "$work/err")" -eq 1 ] && grep -q "invalid choice" "$work/err"'
 
 printf '{"camera": 3}\n' > "$work/bad.json"
 python3 bench/compare_builds.py --scene "$work/bad.json" "A=$brume" "B=$brume" > "$work/out" 2> "$work/err"
