@@ -17,66 +17,100 @@ GeometrySet::GeometrySet(const std::vector<Geometry>& geometry) {
         p.radius = g.radius;
         p.localFromWorld = g.transform.localFromWorld();
         p.normalToWorld = glm::transpose(glm::mat3(p.localFromWorld));
+        if (g.type == GeometryType::Sphere) {
+            p.lo = g.center - glm::vec3(g.radius);
+            p.hi = g.center + glm::vec3(g.radius);
+        } else if (g.type == GeometryType::Box) {
+            // The unit cube's corners (the box intersect() tests) carried to the world.
+            const glm::mat4 world = g.transform.worldFromLocal();
+            p.lo = glm::vec3(shd::BRUME_HUGE);
+            p.hi = glm::vec3(-shd::BRUME_HUGE);
+            for (int c = 0; c < 8; ++c) {
+                const glm::vec3 local((c & 1) ? 0.5f : -0.5f, (c & 2) ? 0.5f : -0.5f, (c & 4) ? 0.5f : -0.5f);
+                const glm::vec3 w = glm::vec3(world * glm::vec4(local, 1.0f));
+                p.lo = glm::min(p.lo, w);
+                p.hi = glm::max(p.hi, w);
+            }
+        }
         prims_.push_back(p);
     }
+}
+
+// Primitive i's hit, if nearer than best (t in (tMin, best.t)), replaces best.
+void GeometrySet::intersectPrim(size_t i, const Ray& ray, float tMin, SurfaceHit& best) const {
+    const Prim& p = prims_[i];
+    float t = -1.0f;
+    glm::vec3 n(0.0f);
+    if (p.type == GeometryType::Plane) {
+        if (ray.dir.y == 0.0f) return;
+        t = (p.height - ray.origin.y) / ray.dir.y;
+        n = glm::vec3(0.0f, 1.0f, 0.0f);
+    } else if (p.type == GeometryType::Sphere) {
+        // Solve with the origin moved to the centre; the half-b form avoids cancellation.
+        const glm::vec3 oc = ray.origin - p.center;
+        const float b = glm::dot(oc, ray.dir);
+        const glm::vec3 perp = oc - b * ray.dir;
+        const float disc = p.radius * p.radius - glm::dot(perp, perp);
+        if (disc < 0.0f) return;
+        const float s = std::sqrt(disc);
+        const float t0 = -b - s, t1 = -b + s;
+        t = t0 > tMin ? t0 : t1;
+        n = glm::normalize(ray.origin + t * ray.dir - p.center);
+    } else {
+        // Affine maps keep the ray parameter: intersect the unit cube in local space.
+        const glm::vec3 o = glm::vec3(p.localFromWorld * glm::vec4(ray.origin, 1.0f));
+        const glm::vec3 d = glm::vec3(p.localFromWorld * glm::vec4(ray.dir, 0.0f));
+        float tNear = -shd::BRUME_HUGE, tFar = shd::BRUME_HUGE;
+        int axisNear = 0, axisFar = 0;
+        bool miss = false;
+        for (int a = 0; a < 3; ++a) {
+            if (d[a] == 0.0f) {
+                if (std::abs(o[a]) > 0.5f) miss = true;
+                continue;
+            }
+            float ta = (-0.5f - o[a]) / d[a], tb = (0.5f - o[a]) / d[a];
+            if (ta > tb) std::swap(ta, tb);
+            if (ta > tNear) { tNear = ta; axisNear = a; }
+            if (tb < tFar) { tFar = tb; axisFar = a; }
+        }
+        if (miss || tNear > tFar) return;
+        const int axis = tNear > tMin ? axisNear : axisFar;
+        t = tNear > tMin ? tNear : tFar;
+        glm::vec3 ln(0.0f);
+        ln[axis] = (o[axis] + t * d[axis]) > 0.0f ? 1.0f : -1.0f;
+        n = glm::normalize(p.normalToWorld * ln);
+    }
+    if (!(t > tMin && t < best.t)) return;
+    best.t = t;
+    best.index = static_cast<int>(i);
+    best.position = ray.origin + t * ray.dir;
+    best.normal = glm::dot(n, ray.dir) > 0.0f ? -n : n;
+    best.albedo = p.albedo;
+    best.emission = p.emission;
 }
 
 SurfaceHit GeometrySet::intersect(const Ray& ray, float tMax, float tMin) const {
     SurfaceHit best;
     best.t = tMax;
-    for (size_t i = 0; i < prims_.size(); ++i) {
-        const Prim& p = prims_[i];
-        float t = -1.0f;
-        glm::vec3 n(0.0f);
-        if (p.type == GeometryType::Plane) {
-            if (ray.dir.y == 0.0f) continue;
-            t = (p.height - ray.origin.y) / ray.dir.y;
-            n = glm::vec3(0.0f, 1.0f, 0.0f);
-        } else if (p.type == GeometryType::Sphere) {
-            // Solve with the origin moved to the centre; the half-b form avoids cancellation.
-            const glm::vec3 oc = ray.origin - p.center;
-            const float b = glm::dot(oc, ray.dir);
-            const glm::vec3 perp = oc - b * ray.dir;
-            const float disc = p.radius * p.radius - glm::dot(perp, perp);
-            if (disc < 0.0f) continue;
-            const float s = std::sqrt(disc);
-            const float t0 = -b - s, t1 = -b + s;
-            t = t0 > tMin ? t0 : t1;
-            n = glm::normalize(ray.origin + t * ray.dir - p.center);
-        } else {
-            // Affine maps keep the ray parameter: intersect the unit cube in local space.
-            const glm::vec3 o = glm::vec3(p.localFromWorld * glm::vec4(ray.origin, 1.0f));
-            const glm::vec3 d = glm::vec3(p.localFromWorld * glm::vec4(ray.dir, 0.0f));
-            float tNear = -shd::BRUME_HUGE, tFar = shd::BRUME_HUGE;
-            int axisNear = 0, axisFar = 0;
-            bool miss = false;
-            for (int a = 0; a < 3; ++a) {
-                if (d[a] == 0.0f) {
-                    if (std::abs(o[a]) > 0.5f) miss = true;
-                    continue;
-                }
-                float ta = (-0.5f - o[a]) / d[a], tb = (0.5f - o[a]) / d[a];
-                if (ta > tb) std::swap(ta, tb);
-                if (ta > tNear) { tNear = ta; axisNear = a; }
-                if (tb < tFar) { tFar = tb; axisFar = a; }
-            }
-            if (miss || tNear > tFar) continue;
-            const int axis = tNear > tMin ? axisNear : axisFar;
-            t = tNear > tMin ? tNear : tFar;
-            glm::vec3 ln(0.0f);
-            ln[axis] = (o[axis] + t * d[axis]) > 0.0f ? 1.0f : -1.0f;
-            n = glm::normalize(p.normalToWorld * ln);
-        }
-        if (!(t > tMin && t < best.t)) continue;
-        best.t = t;
-        best.index = static_cast<int>(i);
-        best.position = ray.origin + t * ray.dir;
-        best.normal = glm::dot(n, ray.dir) > 0.0f ? -n : n;
-        best.albedo = p.albedo;
-        best.emission = p.emission;
-    }
+    for (size_t i = 0; i < prims_.size(); ++i) intersectPrim(i, ray, tMin, best);
     if (!best.hit()) best.t = shd::BRUME_HUGE;
     return best;
+}
+
+SurfaceHit GeometrySet::intersect(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const {
+    SurfaceHit best;
+    best.t = tMax;
+    for (const int i : candidates) intersectPrim(static_cast<size_t>(i), ray, tMin, best);
+    if (!best.hit()) best.t = shd::BRUME_HUGE;
+    return best;
+}
+
+bool GeometrySet::worldBounds(int index, glm::vec3& lo, glm::vec3& hi) const {
+    const Prim& p = prims_[static_cast<size_t>(index)];
+    if (p.type == GeometryType::Plane) return false;
+    lo = p.lo;
+    hi = p.hi;
+    return true;
 }
 
 bool GeometrySet::occluded(glm::vec3 from, glm::vec3 dir, float maxDist) const {

@@ -32,14 +32,24 @@ public:
 
     // Nearest hit with t in (tMin, tMax).
     SurfaceHit intersect(const Ray& ray, float tMax, float tMin = 0.0f) const;
+    // The same among the primitives `candidates` (indices, increasing): equal to intersect's result,
+    // bit for bit, when the ray cannot hit the others (the same test per primitive, the same order).
+    SurfaceHit intersect(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const;
+    // A world-space box [lo, hi] holding every point of primitive `index`; false for a plane
+    // (unbounded).
+    bool worldBounds(int index, glm::vec3& lo, glm::vec3& hi) const;
+    int size() const { return static_cast<int>(prims_.size()); }
     // Whether anything lies between `from` and `from + dir * maxDist` (dir unit).
     bool occluded(glm::vec3 from, glm::vec3 dir, float maxDist) const;
     // Type of primitive `index` (SurfaceHit::index).
     GeometryType type(int index) const { return prims_[static_cast<size_t>(index)].type; }
 
 private:
+    void intersectPrim(size_t i, const Ray& ray, float tMin, SurfaceHit& best) const;
+
     struct Prim {
         GeometryType type;
+        glm::vec3 lo, hi;          // box, sphere: world bounds (worldBounds)
         glm::mat4 localFromWorld;  // box
         glm::mat3 normalToWorld;   // box: inverse transpose of the linear part
         glm::vec3 center;          // sphere

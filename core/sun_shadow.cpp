@@ -28,8 +28,54 @@ void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs) 
     frame.sunShadowLight = sunShadowLight(cs) + 1;
 }
 
+namespace {
+
+// The texels [lo, hi] (inclusive, clamped to the map; empty when lo > hi) whose rays can meet a
+// primitive.
+struct TexelRect {
+    glm::ivec2 lo, hi;
+};
+
+// Each primitive's texels: its world bounds' 8 corners projected on the map's right and up axes (the
+// texel rays run along its third, dir), widened by 2 texels, far more than the rounding of the
+// projection and of the rays' origins. A plane, unbounded, covers the map.
+std::vector<TexelRect> primitiveTexels(const GeometrySet& geometry, const shd::SunShadowFit& fit, int n) {
+    std::vector<TexelRect> rects;
+    const glm::vec3 centre(fit.centerRadius), right(fit.right), up(fit.up);
+    const float r = fit.centerRadius.w;
+    for (int k = 0; k < geometry.size(); ++k) {
+        glm::vec3 lo, hi;
+        if (!geometry.worldBounds(k, lo, hi)) {
+            rects.push_back({glm::ivec2(0), glm::ivec2(n - 1)});
+            continue;
+        }
+        glm::vec2 uvLo(shd::BRUME_HUGE), uvHi(-shd::BRUME_HUGE);
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+            const glm::vec2 uv(glm::dot(p - centre, right), glm::dot(p - centre, up));
+            uvLo = glm::min(uvLo, uv);
+            uvHi = glm::max(uvHi, uv);
+        }
+        // Texel i's ray sits at u = ((i + 0.5) / n * 2 - 1) r (shd::sunShadowTexelRayOrigin).
+        auto texel = [&](glm::vec2 uv) { return (uv / r + 1.0f) * 0.5f * static_cast<float>(n) - 0.5f; };
+        const glm::vec2 a = glm::floor(texel(uvLo)) - 2.0f, b = glm::ceil(texel(uvHi)) + 2.0f;
+        const float last = static_cast<float>(n - 1);
+        if (!(a.x <= b.x && a.y <= b.y)) {
+            rects.push_back({glm::ivec2(0), glm::ivec2(n - 1)});  // not finite (a degenerate transform): every texel
+        } else if (b.x < 0.0f || b.y < 0.0f || a.x > last || a.y > last) {
+            rects.push_back({glm::ivec2(1), glm::ivec2(0)});  // off the map
+        } else {
+            // Clamped as floats: bounds of 1e30 stay representable.
+            rects.push_back({glm::ivec2(glm::max(a, glm::vec2(0.0f))), glm::ivec2(glm::min(b, glm::vec2(last)))});
+        }
+    }
+    return rects;
+}
+
+}  // namespace
+
 SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
-                               int resolution, int threads) {
+                               int resolution, int threads, bool cullByFootprint) {
     SunShadowMap map;
     if (frame.sunShadowLight <= 0) return map;
     map.fit = shd::fitSunShadow(frame, cs.lights[static_cast<size_t>(frame.sunShadowLight - 1)], resolution);
@@ -38,13 +84,25 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
     const glm::vec3 dir(map.fit.dir);
     // Rays end past the far side of the fitted sphere: nothing beyond can shadow the froxel range.
     const float tMax = shd::SUN_SHADOW_RAY_START + 2.0f * map.fit.centerRadius.w;
+    const std::vector<TexelRect> rects = primitiveTexels(geometry, map.fit, resolution);
     parallelFor(resolution, threads, [&](int j) {
+        // The primitives whose texels include row j, then those of texel (i, j), in index order.
+        std::vector<int> row, candidates;
+        for (int k = 0; k < geometry.size(); ++k)
+            if (!cullByFootprint || (rects[static_cast<size_t>(k)].lo.y <= j && j <= rects[static_cast<size_t>(k)].hi.y))
+                row.push_back(k);
+        candidates.reserve(row.size());
         for (int i = 0; i < resolution; ++i) {
+            candidates.clear();
+            for (const int k : row)
+                if (!cullByFootprint || (rects[static_cast<size_t>(k)].lo.x <= i && i <= rects[static_cast<size_t>(k)].hi.x))
+                    candidates.push_back(k);
+            if (candidates.empty()) continue;
             const Ray ray{shd::sunShadowTexelRayOrigin(map.fit, i, j), dir};
-            const SurfaceHit first = geometry.intersect(ray, tMax);
+            const SurfaceHit first = geometry.intersect(ray, tMax, 0.0f, candidates);
             if (!first.hit()) continue;
             // The second surface: where the ray leaves the first solid (shared/sun_shadow.h).
-            const SurfaceHit second = geometry.intersect(ray, tMax, first.t + kSecondDepthGap);
+            const SurfaceHit second = geometry.intersect(ray, tMax, first.t + kSecondDepthGap, candidates);
             if (!second.hit()) continue;
             const glm::ivec2 texel(i, j);
             map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, texel))] = second.t - shd::SUN_SHADOW_RAY_START;

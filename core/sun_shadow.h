@@ -27,8 +27,11 @@ struct SunShadowMap {
 void applySunShadowSettings(shd::FrameUniforms& frame, const CompiledScene& cs);
 
 // The map for frame (empty when frame.sunShadowLight is 0). Independent of the frame's jitter.
+// Each texel's rays test only the primitives whose bounds project onto it (the ground plane and the
+// few solids in its footprint, not every solid of the scene); cullByFootprint false tests every
+// primitive, the same map bit for bit (tests/test_sun_shadow.cpp holds them equal).
 SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geometry, const shd::FrameUniforms& frame,
-                               int resolution, int threads);
+                               int resolution, int threads, bool cullByFootprint = true);
 
 // The last two maps built, each kept while its geometry and fit (camera, froxel range, light
 // direction, resolution) do not change; a request that matches neither rebuilds the older one. The

@@ -5,6 +5,8 @@
 #include "core/froxel_frame.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <cstdio>
 
 #include "core/geometry.h"
@@ -186,4 +188,65 @@ TEST(SunShadowMap, CpuFrameSequenceBuildsTheMapOnce) {
     scene.geometry[1].transform.translation.x += 0.5f;
     renderFroxelFrameCpu(scene, req, history);
     EXPECT_EQ(history.sunShadow.builds(), 2);
+}
+
+// The map's ray cast tests each texel's rays against the primitives whose bounds project onto that
+// texel only (core/sun_shadow.cpp primitiveTexels): the map must equal the one that tests every
+// primitive, bit for bit. Random scenes of rotated and scaled boxes and spheres, some straddling the
+// map's edge or off it, small ones (a texel or less), two planes, under suns from several directions
+// and at several map resolutions; a cut that missed part of a primitive's footprint changes texels.
+TEST(SunShadowMap, FootprintCullingBuildsTheSameMapAsTestingEveryPrimitive) {
+    uint32_t seed = 12345u;
+    auto rnd = [&](float lo, float hi) {
+        seed = seed * 1664525u + 1013904223u;
+        return lo + (hi - lo) * static_cast<float>(seed >> 8) / static_cast<float>(1u << 24);
+    };
+    int solidTexels = 0;
+    for (int scene = 0; scene < 12; ++scene) {
+        Scene s = shaftScene();
+        const float far = rnd(6.0f, 40.0f);
+        s.froxels.far = far;
+        s.lights[0].direction = glm::normalize(glm::vec3(rnd(-1.0f, 1.0f), rnd(-1.0f, -0.2f), rnd(-1.0f, 1.0f)));
+        s.geometry.resize(1);  // the ground
+        if (scene % 3 == 0) {
+            Geometry raised = s.geometry[0];
+            raised.height = rnd(-3.0f, -0.5f);
+            s.geometry.push_back(raised);
+        }
+        for (int k = 0; k < 14; ++k) {
+            Geometry g;
+            g.type = k % 3 == 0 ? GeometryType::Sphere : GeometryType::Box;
+            const glm::vec3 at(rnd(-1.5f, 1.5f) * far, rnd(0.0f, 6.0f), rnd(-1.5f, 1.5f) * far);
+            const float size = k % 5 == 0 ? rnd(0.005f, 0.05f) : rnd(0.2f, 6.0f);
+            g.center = at;
+            g.radius = size;
+            g.transform.translation = at;
+            g.transform.scale = glm::vec3(size * rnd(0.2f, 3.0f), size * rnd(0.2f, 3.0f), size * rnd(0.2f, 3.0f));
+            g.transform.rotation_deg = glm::vec3(rnd(-180.0f, 180.0f), rnd(-180.0f, 180.0f), rnd(-180.0f, 180.0f));
+            s.geometry.push_back(g);
+        }
+        const CompiledScene cs = compileScene(s);
+        shd::FrameUniforms frame = makeFrameUniforms(s, cs, 64, 36, resolveFroxelSettings(s, Quality::Low), glm::vec3(0.5f));
+        applySunShadowSettings(frame, cs);
+        ASSERT_EQ(frame.sunShadowLight, 1);
+        const GeometrySet geometry(s.geometry);
+        for (const int n : {64, 200, 512}) {
+            const SunShadowMap culled = buildSunShadowMap(cs, geometry, frame, n, 2);
+            const SunShadowMap every = buildSunShadowMap(cs, geometry, frame, n, 2, false);
+            ASSERT_EQ(culled.depth.size(), every.depth.size());
+            size_t differ = 0;
+            for (size_t i = 0; i < culled.depth.size(); ++i)
+                differ += std::memcmp(&culled.depth[i], &every.depth[i], sizeof(float)) != 0 ? 1 : 0;
+            EXPECT_EQ(differ, 0u) << "scene " << scene << ", " << n << " texels";
+            // The froxel layer holds a solid's first depth where one is hit, the plane's second
+            // depth elsewhere: count the texels where a solid was hit, so that the scenes are known
+            // to put solids on the maps.
+            if (n == 200) {
+                const GeometrySet ground({s.geometry[0]});
+                const SunShadowMap plane = buildSunShadowMap(cs, ground, frame, n, 2, false);
+                for (size_t i = 0; i < every.depth.size(); ++i) solidTexels += every.depth[i] != plane.depth[i] ? 1 : 0;
+            }
+        }
+    }
+    EXPECT_GT(solidTexels, 5000);
 }
