@@ -1,9 +1,16 @@
 // Time of the CPU froxel renderer per quality preset and image width, on a box and height
-// fog scene close to the one tests/test_froxel_renderer.cpp compares with the reference.
-// Run: bench_froxel --benchmark_filter=... ; arguments are (quality, width).
+// fog scene close to the one tests/test_froxel_renderer.cpp compares with the reference; and of the
+// sun shadow map's host ray cast, which every camera move repeats (core/sun_shadow.cpp).
+// Run: bench_froxel --benchmark_filter=... ; arguments are (quality, width) and (resolution, culled).
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+
+#include "core/froxel_frame.h"
+#include "core/geometry.h"
 #include "core/render.h"
+#include "core/sun_shadow.h"
+#include "io/scene_json.h"
 
 namespace {
 
@@ -56,6 +63,31 @@ BENCHMARK(BM_FroxelCpu)
     ->ArgsProduct({{0, 1, 2, 3}, {160, 640}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The default scene's sun shadow map at 512 (`low`) and 1024 texels, each texel's rays against the
+// primitives over it (1) or against every primitive (0): the same map (docs/performance.md, "sunmap").
+void BM_SunShadowMap(benchmark::State& state) {
+    Result<Scene> loaded = loadSceneFile(BRUME_SOURCE_DIR "/assets/scenes/default.json");
+    if (!loaded) {
+        state.SkipWithError(loaded.error().message.c_str());
+        return;
+    }
+    const Scene& scene = loaded.value();
+    const CompiledScene cs = compileScene(scene);
+    shd::FrameUniforms frame =
+        makeFrameUniforms(scene, cs, 1280, 720, resolveFroxelSettings(scene, Quality::High), glm::vec3(0.5f));
+    applySunShadowSettings(frame, cs);
+    const GeometrySet geometry(scene.geometry);
+    const int n = static_cast<int>(state.range(0));
+    const bool culled = state.range(1) != 0;
+    for (auto _ : state) {
+        SunShadowMap map = buildSunShadowMap(cs, geometry, frame, n, 0, culled);
+        benchmark::DoNotOptimize(map.depth.data());
+    }
+    state.SetLabel(culled ? "primitives over each texel" : "every primitive");
+}
+
+BENCHMARK(BM_SunShadowMap)->ArgsProduct({{512, 1024}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brume {
 
@@ -36,51 +37,64 @@ GeometrySet::GeometrySet(const std::vector<Geometry>& geometry) {
     }
 }
 
-// Primitive i's hit, if nearer than best (t in (tMin, best.t)), replaces best.
-void GeometrySet::intersectPrim(size_t i, const Ray& ray, float tMin, SurfaceHit& best) const {
+// Where the ray meets primitive i past tMin (t <= tMin or NaN: it does not); for a box, the axis of
+// the face it meets (boxAxis).
+constexpr float kMiss = std::numeric_limits<float>::quiet_NaN();  // fails every t > tMin test
+
+float GeometrySet::primitiveT(size_t i, const Ray& ray, float tMin, int& boxAxis) const {
     const Prim& p = prims_[i];
-    float t = -1.0f;
-    glm::vec3 n(0.0f);
     if (p.type == GeometryType::Plane) {
-        if (ray.dir.y == 0.0f) return;
-        t = (p.height - ray.origin.y) / ray.dir.y;
-        n = glm::vec3(0.0f, 1.0f, 0.0f);
-    } else if (p.type == GeometryType::Sphere) {
+        if (ray.dir.y == 0.0f) return kMiss;
+        return (p.height - ray.origin.y) / ray.dir.y;
+    }
+    if (p.type == GeometryType::Sphere) {
         // Solve with the origin moved to the centre; the half-b form avoids cancellation.
         const glm::vec3 oc = ray.origin - p.center;
         const float b = glm::dot(oc, ray.dir);
         const glm::vec3 perp = oc - b * ray.dir;
         const float disc = p.radius * p.radius - glm::dot(perp, perp);
-        if (disc < 0.0f) return;
+        if (disc < 0.0f) return kMiss;
         const float s = std::sqrt(disc);
         const float t0 = -b - s, t1 = -b + s;
-        t = t0 > tMin ? t0 : t1;
+        return t0 > tMin ? t0 : t1;
+    }
+    // Affine maps keep the ray parameter: intersect the unit cube in local space.
+    const glm::vec3 o = glm::vec3(p.localFromWorld * glm::vec4(ray.origin, 1.0f));
+    const glm::vec3 d = glm::vec3(p.localFromWorld * glm::vec4(ray.dir, 0.0f));
+    float tNear = -shd::BRUME_HUGE, tFar = shd::BRUME_HUGE;
+    int axisNear = 0, axisFar = 0;
+    bool miss = false;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (std::abs(o[a]) > 0.5f) miss = true;
+            continue;
+        }
+        float ta = (-0.5f - o[a]) / d[a], tb = (0.5f - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        if (ta > tNear) { tNear = ta; axisNear = a; }
+        if (tb < tFar) { tFar = tb; axisFar = a; }
+    }
+    if (miss || tNear > tFar) return kMiss;
+    boxAxis = tNear > tMin ? axisNear : axisFar;
+    return tNear > tMin ? tNear : tFar;
+}
+
+// Primitive i's hit, if nearer than best (t in (tMin, best.t)), replaces best.
+void GeometrySet::intersectPrim(size_t i, const Ray& ray, float tMin, SurfaceHit& best) const {
+    int axis = 0;
+    const float t = primitiveT(i, ray, tMin, axis);
+    if (!(t > tMin && t < best.t)) return;
+    const Prim& p = prims_[i];
+    glm::vec3 n(0.0f, 1.0f, 0.0f);  // plane
+    if (p.type == GeometryType::Sphere) {
         n = glm::normalize(ray.origin + t * ray.dir - p.center);
-    } else {
-        // Affine maps keep the ray parameter: intersect the unit cube in local space.
+    } else if (p.type == GeometryType::Box) {
         const glm::vec3 o = glm::vec3(p.localFromWorld * glm::vec4(ray.origin, 1.0f));
         const glm::vec3 d = glm::vec3(p.localFromWorld * glm::vec4(ray.dir, 0.0f));
-        float tNear = -shd::BRUME_HUGE, tFar = shd::BRUME_HUGE;
-        int axisNear = 0, axisFar = 0;
-        bool miss = false;
-        for (int a = 0; a < 3; ++a) {
-            if (d[a] == 0.0f) {
-                if (std::abs(o[a]) > 0.5f) miss = true;
-                continue;
-            }
-            float ta = (-0.5f - o[a]) / d[a], tb = (0.5f - o[a]) / d[a];
-            if (ta > tb) std::swap(ta, tb);
-            if (ta > tNear) { tNear = ta; axisNear = a; }
-            if (tb < tFar) { tFar = tb; axisFar = a; }
-        }
-        if (miss || tNear > tFar) return;
-        const int axis = tNear > tMin ? axisNear : axisFar;
-        t = tNear > tMin ? tNear : tFar;
         glm::vec3 ln(0.0f);
         ln[axis] = (o[axis] + t * d[axis]) > 0.0f ? 1.0f : -1.0f;
         n = glm::normalize(p.normalToWorld * ln);
     }
-    if (!(t > tMin && t < best.t)) return;
     best.t = t;
     best.index = static_cast<int>(i);
     best.position = ray.origin + t * ray.dir;
@@ -102,6 +116,16 @@ SurfaceHit GeometrySet::intersect(const Ray& ray, float tMax, float tMin, const 
     best.t = tMax;
     for (const int i : candidates) intersectPrim(static_cast<size_t>(i), ray, tMin, best);
     if (!best.hit()) best.t = shd::BRUME_HUGE;
+    return best;
+}
+
+GeometrySet::Nearest GeometrySet::nearest(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const {
+    Nearest best{tMax, -1};
+    for (const int i : candidates) {
+        int axis = 0;
+        const float t = primitiveT(static_cast<size_t>(i), ray, tMin, axis);
+        if (t > tMin && t < best.t) best = {t, i};
+    }
     return best;
 }
 

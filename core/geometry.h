@@ -35,6 +35,12 @@ public:
     // The same among the primitives `candidates` (indices, increasing): equal to intersect's result,
     // bit for bit, when the ray cannot hit the others (the same test per primitive, the same order).
     SurfaceHit intersect(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const;
+    // intersect's t and index alone (index -1: none), without the hit's position and normal.
+    struct Nearest {
+        float t;
+        int index;
+    };
+    Nearest nearest(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const;
     // A world-space box [lo, hi] holding every point of primitive `index`; false for a plane
     // (unbounded).
     bool worldBounds(int index, glm::vec3& lo, glm::vec3& hi) const;
@@ -45,6 +51,7 @@ public:
     GeometryType type(int index) const { return prims_[static_cast<size_t>(index)].type; }
 
 private:
+    float primitiveT(size_t i, const Ray& ray, float tMin, int& boxAxis) const;
     void intersectPrim(size_t i, const Ray& ray, float tMin, SurfaceHit& best) const;
 
     struct Prim {

@@ -87,23 +87,32 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
     const std::vector<TexelRect> rects = primitiveTexels(geometry, map.fit, resolution);
     parallelFor(resolution, threads, [&](int j) {
         // The primitives whose texels include row j, then those of texel (i, j), in index order.
+        // A row whose primitives all span it (planes, or no culling) keeps one list for every texel.
         std::vector<int> row, candidates;
-        for (int k = 0; k < geometry.size(); ++k)
-            if (!cullByFootprint || (rects[static_cast<size_t>(k)].lo.y <= j && j <= rects[static_cast<size_t>(k)].hi.y))
-                row.push_back(k);
+        bool wholeRow = true;
+        for (int k = 0; k < geometry.size(); ++k) {
+            const TexelRect& t = rects[static_cast<size_t>(k)];
+            if (cullByFootprint && !(t.lo.y <= j && j <= t.hi.y)) continue;
+            row.push_back(k);
+            wholeRow = wholeRow && (!cullByFootprint || (t.lo.x == 0 && t.hi.x == resolution - 1));
+        }
+        if (wholeRow) candidates = row;
         candidates.reserve(row.size());
         for (int i = 0; i < resolution; ++i) {
-            candidates.clear();
-            for (const int k : row)
-                if (!cullByFootprint || (rects[static_cast<size_t>(k)].lo.x <= i && i <= rects[static_cast<size_t>(k)].hi.x))
-                    candidates.push_back(k);
+            if (!wholeRow) {
+                candidates.clear();
+                for (const int k : row) {
+                    const TexelRect& t = rects[static_cast<size_t>(k)];
+                    if (t.lo.x <= i && i <= t.hi.x) candidates.push_back(k);
+                }
+            }
             if (candidates.empty()) continue;
             const Ray ray{shd::sunShadowTexelRayOrigin(map.fit, i, j), dir};
-            const SurfaceHit first = geometry.intersect(ray, tMax, 0.0f, candidates);
-            if (!first.hit()) continue;
+            const GeometrySet::Nearest first = geometry.nearest(ray, tMax, 0.0f, candidates);
+            if (first.index < 0) continue;
             // The second surface: where the ray leaves the first solid (shared/sun_shadow.h).
-            const SurfaceHit second = geometry.intersect(ray, tMax, first.t + kSecondDepthGap, candidates);
-            if (!second.hit()) continue;
+            const GeometrySet::Nearest second = geometry.nearest(ray, tMax, first.t + kSecondDepthGap, candidates);
+            if (second.index < 0) continue;
             const glm::ivec2 texel(i, j);
             map.depth[static_cast<size_t>(shd::sunShadowIndex(map.fit, texel))] = second.t - shd::SUN_SHADOW_RAY_START;
             const bool plane = geometry.type(first.index) == GeometryType::Plane;
