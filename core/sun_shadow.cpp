@@ -96,6 +96,12 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
             row.push_back(k);
             wholeRow = wholeRow && (!cullByFootprint || (t.lo.x == 0 && t.hi.x == resolution - 1));
         }
+        // A ray that can meet one plane alone has no second surface (the plane's t again is not
+        // past the first hit): its texel keeps BRUME_HUGE, as the ray cast below would leave it.
+        auto planeAlone = [&](const std::vector<int>& c) {
+            return c.size() == 1 && geometry.type(c[0]) == GeometryType::Plane;
+        };
+        if (wholeRow && (row.empty() || planeAlone(row))) return;
         if (wholeRow) candidates = row;
         candidates.reserve(row.size());
         for (int i = 0; i < resolution; ++i) {
@@ -106,7 +112,7 @@ SunShadowMap buildSunShadowMap(const CompiledScene& cs, const GeometrySet& geome
                     if (t.lo.x <= i && i <= t.hi.x) candidates.push_back(k);
                 }
             }
-            if (candidates.empty()) continue;
+            if (candidates.empty() || planeAlone(candidates)) continue;
             const Ray ray{shd::sunShadowTexelRayOrigin(map.fit, i, j), dir};
             const GeometrySet::Nearest first = geometry.nearest(ray, tMax, 0.0f, candidates);
             if (first.index < 0) continue;
