@@ -17,14 +17,20 @@ static void unbounded(shd::VolumeData& d) {
     d.worldMax = glm::vec4(BRUME_HUGE, BRUME_HUGE, BRUME_HUGE, 0.0f);
 }
 
-static void boundsOfUnitCube(shd::VolumeData& d, const glm::mat4& worldFromLocal) {
-    glm::vec3 lo(BRUME_HUGE), hi(-BRUME_HUGE);
+void unitCubeWorldBounds(const glm::mat4& worldFromLocal, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(BRUME_HUGE);
+    hi = glm::vec3(-BRUME_HUGE);
     for (int i = 0; i < 8; ++i) {
         glm::vec3 c((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f);
         glm::vec3 w = glm::vec3(worldFromLocal * glm::vec4(c, 1.0f));
         lo = glm::min(lo, w);
         hi = glm::max(hi, w);
     }
+}
+
+static void boundsOfUnitCube(shd::VolumeData& d, const glm::mat4& worldFromLocal) {
+    glm::vec3 lo, hi;
+    unitCubeWorldBounds(worldFromLocal, lo, hi);
     d.worldMin = glm::vec4(lo, 0.0f);
     d.worldMax = glm::vec4(hi, 0.0f);
 }

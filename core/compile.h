@@ -31,6 +31,10 @@ struct CompiledScene {
     InfluenceSet influence;
 };
 
+// The world-space box [lo, hi] holding the unit cube [-0.5, 0.5]^3 carried by worldFromLocal (a box
+// volume's or a box surface's transform): the box of its 8 corners.
+void unitCubeWorldBounds(const glm::mat4& worldFromLocal, glm::vec3& lo, glm::vec3& hi);
+
 shd::VolumeData compileVolume(const Volume& v);
 shd::LightData compileLight(const Light& l);
 CompiledScene compileScene(const Scene& scene);

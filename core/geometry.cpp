@@ -22,16 +22,7 @@ GeometrySet::GeometrySet(const std::vector<Geometry>& geometry) {
             p.lo = g.center - glm::vec3(g.radius);
             p.hi = g.center + glm::vec3(g.radius);
         } else if (g.type == GeometryType::Box) {
-            // The unit cube's corners (the box intersect() tests) carried to the world.
-            const glm::mat4 world = g.transform.worldFromLocal();
-            p.lo = glm::vec3(shd::BRUME_HUGE);
-            p.hi = glm::vec3(-shd::BRUME_HUGE);
-            for (int c = 0; c < 8; ++c) {
-                const glm::vec3 local((c & 1) ? 0.5f : -0.5f, (c & 2) ? 0.5f : -0.5f, (c & 4) ? 0.5f : -0.5f);
-                const glm::vec3 w = glm::vec3(world * glm::vec4(local, 1.0f));
-                p.lo = glm::min(p.lo, w);
-                p.hi = glm::max(p.hi, w);
-            }
+            unitCubeWorldBounds(g.transform.worldFromLocal(), p.lo, p.hi);  // the cube intersect() tests
         }
         prims_.push_back(p);
     }
@@ -107,14 +98,6 @@ SurfaceHit GeometrySet::intersect(const Ray& ray, float tMax, float tMin) const 
     SurfaceHit best;
     best.t = tMax;
     for (size_t i = 0; i < prims_.size(); ++i) intersectPrim(i, ray, tMin, best);
-    if (!best.hit()) best.t = shd::BRUME_HUGE;
-    return best;
-}
-
-SurfaceHit GeometrySet::intersect(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const {
-    SurfaceHit best;
-    best.t = tMax;
-    for (const int i : candidates) intersectPrim(static_cast<size_t>(i), ray, tMin, best);
     if (!best.hit()) best.t = shd::BRUME_HUGE;
     return best;
 }

@@ -32,10 +32,9 @@ public:
 
     // Nearest hit with t in (tMin, tMax).
     SurfaceHit intersect(const Ray& ray, float tMax, float tMin = 0.0f) const;
-    // The same among the primitives `candidates` (indices, increasing): equal to intersect's result,
-    // bit for bit, when the ray cannot hit the others (the same test per primitive, the same order).
-    SurfaceHit intersect(const Ray& ray, float tMax, float tMin, const std::vector<int>& candidates) const;
-    // intersect's t and index alone (index -1: none), without the hit's position and normal.
+    // intersect's t and index alone (index -1: none, t then tMax), among the primitives `candidates`
+    // (indices, increasing): bit for bit intersect's, when the ray cannot hit the others (the same
+    // test per primitive, in the same order), without the hit's position and normal.
     struct Nearest {
         float t;
         int index;

@@ -7,7 +7,7 @@
 # Usage: compare_builds.sh BRUME_EXE SOURCE_DIR
 set -uo pipefail
 brume=$1 src=$2
-work=$(mktemp -d /tmp/brume_compare_XXXXXX)
+work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/spv"
 cd "$src"
