@@ -363,13 +363,34 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     return {};
 }
 
+// Whether voxelize dispatches this frame: with vdb volumes always; without, the light passes and the
+// glow compute the media themselves (VariantKey::inlineMedia) and voxelize runs only to fill the media
+// images for the read-back volumes.
+bool voxelizeDispatches(const VariantKey& variant, bool readBackVolumes) {
+    return !variant.inlineMedia() || readBackVolumes;
+}
+
 // Outside the media region the voxelize and light passes would write 0 (core/media_region.h): when
-// the region is not the whole grid, clear what they write, then dispatch over the region. When no
-// volume emits, voxelize leaves mediaEmission's store out (SPEC_EMISSION) and it is cleared here.
+// the region is not the whole grid, clear what they write that a later pass reads there (sigma_t and
+// S, read by the temporal and integrate passes over their larger region; sigma_s and g, read by the
+// glow when it loads them), then dispatch over the region. mediaEmission is read outside the region,
+// or at all when no volume emits (SPEC_EMISSION 0: voxelize leaves its store out, the light passes
+// read 0 without a load), only by the read-back volumes: it is cleared for them alone, a memset of
+// the whole grid (~2% of a `high` frame: docs/performance.md, "fuse").
 void recordClearMedia(const PassContext& ctx) {
     const FrameResources& r = *ctx.res;
     const bool partial = r.mediaOrigin != glm::ivec3(0) || r.mediaExtent != r.froxelDims;
-    if (partial || !r.mediaEmits) {
+    const bool dispatches = voxelizeDispatches(*ctx.variant, ctx.readBackVolumes);
+    auto cleared = [&](ResRef w) {
+        if (w.kind != ResRef::Kind::Image) return false;
+        if (w == ResRef(ImageId::mediaEmission)) return ctx.readBackVolumes && (partial || !r.mediaEmits);
+        // Inline media: only the read-back volumes read mediaScatteringG (glow computes it).
+        if (w == ResRef(ImageId::mediaScatteringG)) return partial && dispatches;
+        return partial;
+    };
+    bool any = false;
+    for (ResRef w : ctx.pass->writes) any = any || cleared(w);
+    if (any) {
         const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
         const VkPipelineStageFlags transfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
         // After the frame's layout transitions and last frame's readers (compute and copies).
@@ -378,13 +399,13 @@ void recordClearMedia(const PassContext& ctx) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         for (ResRef w : ctx.pass->writes)
-            if (w.kind == ResRef::Kind::Image && (partial || w == ResRef(ImageId::mediaEmission)))
+            if (cleared(w))
                 vkCmdClearColorImage(ctx.cmd, r.image(w, ctx.historyWriteIndex).image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
                                      1, &all);
         memoryBarrier(ctx.cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, compute,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     }
-    dispatchPass(ctx);
+    if (dispatches) dispatchPass(ctx);
 }
 
 void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW) {
@@ -558,7 +579,10 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         ctx.triangleVertices = mesh.triangleVertices;
         ctx.sphereVertices = mesh.sphereVertices;
         // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
-        const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest);
+        ctx.readBackVolumes = readBackVolumes;
+        // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
+        const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest) &&
+                                !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));
         if (p.dispatch != Dispatch::Raster && dispatches) {
             const SpecKey* key = !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
             Result<const ComputePass*> pipeline =

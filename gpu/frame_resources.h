@@ -67,7 +67,7 @@ struct FrameResources {
     glm::ivec3 mediaOrigin{0};
     glm::ivec3 mediaExtent{0};
     // Whether some volume emits (SPEC_EMISSION): if not, voxelize does not store mediaEmission and the
-    // frame clears it to 0 instead (frame_executor.cpp recordClearMedia).
+    // frame clears it to 0 for the read-back volumes (frame_executor.cpp recordClearMedia).
     bool mediaEmits = true;
     // The froxels the temporal and integrate passes compute (core/media_region.h temporalFroxelRegion).
     FroxelRegion temporalRegion;

@@ -38,14 +38,16 @@ const std::array<PassDecl, 15> kPasses{{
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
-    {"light", "light", Variant::Shapes, Dispatch::MediaRuns, When::Always, Record::Dispatch,
+    // Without vdb volumes (_media) it computes the media itself and stores sigma_t (VariantKey::inlineMedia).
+    {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      B::localShadowMaps, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
-     {I::sourceImage, B::counters, B::exactList}, true, true},
+      B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
+     {I::sourceImage, I::mediaExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
-    {"light exact", "light_exact", Variant::Shapes, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
+    {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      B::localShadowMaps, I::mediaScatteringG, I::mediaEmission, B::exactList},
+      B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
+      B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
     // (core/media_region.h) into the history's output, which the later passes read. At rest it only
@@ -93,10 +95,11 @@ const std::array<PassDecl, 15> kPasses{{
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
     // added to the output over each glowing light's screen rectangle only.
-    {"glow", "glow", Variant::None, Dispatch::GlowRects, When::Always, Record::Glow,
-     {B::frame, T::lightTexels, I::integratedTransmittance, I::sceneDepth, I::mediaScatteringG,
-      historyOut(H::historySource), historyOut(H::historyExtinction), I::outputImage},
-     {I::outputImage}},
+    // Specialized like the froxel passes: the _media variants evaluate the froxel passes' volume list.
+    {"glow", "glow", Variant::GlowMedia, Dispatch::GlowRects, When::Always, Record::Glow,
+     {B::frame, T::lightTexels, T::volumeTexels, B::vdbGrids, B::influence, I::integratedTransmittance, I::sceneDepth,
+      I::mediaScatteringG, historyOut(H::historySource), historyOut(H::historyExtinction), I::outputImage},
+     {I::outputImage}, true, true},
     // One depth slice of density, scattering or transmittance over the output (only when asked).
     {"debug view", "debug_view", Variant::None, Dispatch::Screen, When::DebugView, Record::DebugView,
      {B::frame, historyOut(H::historyExtinction), historyOut(H::historySource), I::integratedTransmittance},
@@ -161,7 +164,11 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
         name += "_vdb";
         if (quantized) name += std::string("_") + toString(k.encoding);
     }
-    if ((v == Variant::ShadowVolume || v == Variant::Shapes) && k.shapes) name += "_shapes";
+    if ((v == Variant::LightMedia || v == Variant::GlowMedia) && k.inlineMedia()) {
+        name += "_media";
+        if (k.textures) name += "_texture";
+    }
+    if ((v == Variant::ShadowVolume || v == Variant::Shapes || v == Variant::LightMedia) && k.shapes) name += "_shapes";
     if (v == Variant::Temporal && k.temporalRest) name += "_rest";
     return name + ".comp";
 }

@@ -164,10 +164,15 @@ constexpr ResRef memoryOf(ResRef r) {
 }
 
 struct ResList {
-    std::array<ResRef, 12> items{};
+    static constexpr size_t kCapacity = 16;
+    std::array<ResRef, kCapacity> items{};
     int count = 0;
-    constexpr ResList(std::initializer_list<ResRef> list) {
-        for (ResRef r : list) items[static_cast<size_t>(count++)] = r;
+    // More entries than kCapacity: the rest are dropped and this is set (tests/test_frame_table.cpp
+    // checks that no pass's list overflows).
+    bool overflow = false;
+    constexpr ResList(std::initializer_list<ResRef> list) : overflow(list.size() > kCapacity) {
+        for (ResRef r : list)
+            if (static_cast<size_t>(count) < kCapacity) items[static_cast<size_t>(count++)] = r;
     }
     constexpr const ResRef* begin() const { return items.data(); }
     constexpr const ResRef* end() const { return items.data() + count; }
@@ -208,6 +213,9 @@ enum class Variant : uint8_t {
     Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
     ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
     Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
+    LightMedia,    // the light passes: _media (then _texture with density textures) without vdb volumes
+                   // (VariantKey::inlineMedia), then _shapes as Shapes
+    GlowMedia,     // the glow: _media (then _texture) without vdb volumes
     Temporal,      // _rest when the view rests or there is no history (shared/temporal.h temporalAtRest):
                    // integrate_rest resolves the history, and the temporal pass dispatches nothing
 };
@@ -220,6 +228,11 @@ struct VariantKey {
     bool shapes = false;    // some volume needs the sampled fog shadow integral (shd::needsShapeShadows)
     bool temporalRest = false;  // this frame's shd::temporalAtRest(frame.temporal)
     bool operator==(const VariantKey&) const = default;
+    // Without vdb volumes the light passes and the glow compute the media where they use them
+    // (shaders/media_at.glsl; their _media variants), and voxelize runs only when the media volumes are
+    // read back: its stores cost more than the media's arithmetic (docs/performance.md, "fuse"). With vdb
+    // volumes the grid walk would cost every froxel of the light pass, so voxelize stores the media.
+    bool inlineMedia() const { return !vdb; }
 };
 
 // The embedded SPIR-V name of `shader`'s variant for key k, e.g. "voxelize_vdb_texture_fp16.comp".

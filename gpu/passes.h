@@ -24,6 +24,7 @@ struct PassContext {
     const ComputePass* pipeline = nullptr;  // compute passes: this frame's variant
     int historyWriteIndex = 0;              // the history side written this frame
     const VariantKey* variant = nullptr;     // this frame's shader variants
+    bool readBackVolumes = false;            // the froxel volumes are read back after the frame
     shd::DebugViewParams debugParams{};
     const std::vector<shd::GlowParams>* glow = nullptr;  // glow: one dispatch each
     glm::vec3 ambient{0.0f};    // geometry: sky radiance

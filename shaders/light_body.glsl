@@ -29,6 +29,12 @@
 #include "fog_shadow.glsl"
 #include "sun_shadow.glsl"
 #include "local_shadow.glsl"
+#ifdef BRUME_INLINE_MEDIA
+#ifdef BRUME_VOXELIZE_TEXTURE
+#include "density_texture.glsl"
+#endif
+#include "media_at.glsl"
+#endif
 
 #ifdef BRUME_LIGHT_EXACT
 layout(local_size_x = LIGHT_EXACT_GROUP) in;
@@ -61,6 +67,32 @@ LightSample lightFroxelSample(LightData l, vec3 p, float nearest) {
     return s;
 }
 
+// A froxel's media (sigma_s and phase g, sigma_t, emission): loaded from voxelize's images, or with
+// BRUME_INLINE_MEDIA (the _media variants, scenes without vdb volumes) computed here at the froxel's
+// sample point p as voxelize computes them (media_at.glsl), the same values: voxelize then runs only
+// when the media volumes are read back, and its 8 stored words per froxel and these loads are saved
+// (docs/performance.md, "fuse"). A member a caller does not use is dead code once inlined.
+struct FroxelMedia {
+    vec4 scatteringG;
+    vec3 sigmaT;
+    vec3 emission;
+};
+
+FroxelMedia froxelMedia(ivec3 id, vec3 p) {
+    FroxelMedia f;
+#ifdef BRUME_INLINE_MEDIA
+    MediaSample m = froxelMediaAt(p);
+    f.scatteringG = vec4(m.sigmaS, mediaPhaseG(m));
+    f.sigmaT = m.sigmaT;
+    f.emission = SPEC_EMISSION != 0 ? m.emission : vec3(0.0f);
+#else
+    f.scatteringG = imageLoad(mediaScatteringG, id);
+    f.sigmaT = imageLoad(mediaExtinction, id).rgb;
+    f.emission = mediaEmissionAt(id);
+#endif
+    return f;
+}
+
 #ifdef BRUME_LIGHT_EXACT
 // fog_shadow.glsl froxelFogTransmittance, with the corners of shadowCorners and the volumes vs
 // (fogVolumes()) fetched once per froxel, not once per light (docs/performance.md, "hoist").
@@ -75,8 +107,9 @@ vec3 exactFogTransmittance(FogVolumes vs, int light, ShadowLookup k, ShadowCorne
 // S at froxel id, which light.comp listed (so sigma_t > 0 there): each light's trusted blend as
 // light.comp computed it, the exact closed form where the blend is not trusted.
 void lightFroxel(ivec3 id) {
-    vec4 scatteringG = imageLoad(mediaScatteringG, id);
     vec3 p = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
+    FroxelMedia media = froxelMedia(id, p);
+    vec4 scatteringG = media.scatteringG;
     vec3 viewDir = normalize(p - frame.cameraPosition.xyz);
     vec3 perSigmaS = frame.ambient.rgb;
     ShadowLookup shadow = shadowLookup(id, frame.froxelDims.xyz, frame.shadowReduction);
@@ -99,7 +132,7 @@ void lightFroxel(ivec3 id) {
         perSigmaS += inScatter * exactFogTransmittance(volumes, i, shadow, corners, p, ls.toLight, ls.distance) *
                      lightMapVisibility(i, p, sun);
     }
-    vec3 source = scatteringG.rgb * perSigmaS + mediaEmissionAt(id);
+    vec3 source = scatteringG.rgb * perSigmaS + media.emission;
     imageStore(sourceImage, id, vec4(source, 0.0f));
 }
 #else
@@ -153,6 +186,7 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
     bool media[LIGHT_BLOCK];
     vec4 scatteringG[LIGHT_BLOCK];
     vec3 emission[LIGHT_BLOCK];
+    vec3 sigmaT[LIGHT_BLOCK];
     vec3 p[LIGHT_BLOCK];
     vec3 viewDir[LIGHT_BLOCK];
     vec3 perSigmaS[LIGHT_BLOCK];
@@ -165,10 +199,12 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
     [[unroll]] for (int j = 0; j < LIGHT_BLOCK; ++j) {
         ivec3 id = ivec3(xy, min(z0 + j, dims.z - 1));
         valid[j] = z0 + j >= zLo && z0 + j <= zHi;
-        media[j] = imageLoad(mediaExtinction, id).rgb != vec3(0.0f);
-        scatteringG[j] = imageLoad(mediaScatteringG, id);
-        emission[j] = mediaEmissionAt(id);
         p[j] = worldFromFroxelCoord(vec3(id) + frame.jitter.xyz, frame);
+        FroxelMedia f = froxelMedia(id, p[j]);
+        sigmaT[j] = f.sigmaT;
+        media[j] = f.sigmaT != vec3(0.0f);
+        scatteringG[j] = f.scatteringG;
+        emission[j] = f.emission;
         viewDir[j] = normalize(p[j] - frame.cameraPosition.xyz);
         perSigmaS[j] = frame.ambient.rgb;
         nearest[j] = FROXEL_LIGHT_CLAMP * froxelRadius(id.z, frame);
@@ -228,6 +264,10 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
             ivec3 id = ivec3(xy, z0 + j);
             vec3 source = media[j] ? scatteringG[j].rgb * perSigmaS[j] + emission[j] : emission[j];
             imageStore(sourceImage, id, vec4(source, 0.0f));
+#ifdef BRUME_INLINE_MEDIA
+            // What voxelize would have stored: the temporal and integrate passes read it.
+            imageStore(mediaExtinction, id, vec4(sigmaT[j], 0.0f));
+#endif
             if (media[j]) ++lit;
             if (media[j] && exact[j]) bits |= 1u << uint(j);
         }

@@ -118,6 +118,19 @@ TEST(FrameTable, BindingsAreDenseAndNamedOnce) {
     }
 }
 
+// A pass's reads or writes beyond ResList::kCapacity would be dropped, and their barriers with them.
+TEST(FrameTable, EveryPassListFitsItsCapacity) {
+    for (const PassDecl& p : kPasses) {
+        EXPECT_FALSE(p.reads.overflow) << p.label << ": more reads than ResList::kCapacity";
+        EXPECT_FALSE(p.writes.overflow) << p.label << ": more writes than ResList::kCapacity";
+    }
+    EXPECT_TRUE(ResList({BufferId::frame, BufferId::frame, BufferId::frame, BufferId::frame, BufferId::frame,
+                         BufferId::frame, BufferId::frame, BufferId::frame, BufferId::frame, BufferId::frame,
+                         BufferId::frame, BufferId::frame, BufferId::frame, BufferId::frame, BufferId::frame,
+                         BufferId::frame, BufferId::frame})
+                    .overflow);
+}
+
 TEST(FrameTable, EveryShaderUsesTheTablesBindings) {
     const auto table = bindingTable();
     const auto files = shaderFiles();
@@ -139,7 +152,8 @@ TEST(FrameTable, EveryShaderUsesTheTablesBindings) {
 TEST(FrameTable, EveryPassListsWhatItsShaderUses) {
     // integrate_rest.comp (-DBRUME_TEMPORAL_REST) is reflected as integrate.comp: its table entry lists the
     // history images the define adds.
-    const VariantKey variants[] = {{}, {true, true, VdbEncoding::Float}, {true, false, VdbEncoding::Fp16}};
+    const VariantKey variants[] = {{}, {false, true, VdbEncoding::Float}, {true, true, VdbEncoding::Float},
+                                   {true, false, VdbEncoding::Fp16}};
     for (const PassDecl& p : kPasses) {
         std::set<std::string> sources;
         if (p.dispatch == Dispatch::Raster) {
@@ -217,12 +231,20 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     EXPECT_EQ(variantShaderName("light", Variant::None, {true, true, VdbEncoding::Fp8}), "light.comp");
     // The light passes' lookups are compiled out by specialization constants, not variants.
     EXPECT_EQ(variantShaderName("light", Variant::Shapes, {}), "light.comp");
+    // Without vdb volumes the light passes and the glow compute the media themselves (_media).
+    EXPECT_EQ(variantShaderName("light", Variant::LightMedia, {}), "light_media.comp");
+    EXPECT_EQ(variantShaderName("light", Variant::LightMedia, {false, true, VdbEncoding::Float}),
+              "light_media_texture.comp");
+    EXPECT_EQ(variantShaderName("light", Variant::LightMedia, {true, true, VdbEncoding::Fp16}), "light.comp");
+    EXPECT_EQ(variantShaderName("glow", Variant::GlowMedia, {false, true, VdbEncoding::Float}), "glow_media_texture.comp");
+    EXPECT_EQ(variantShaderName("glow", Variant::GlowMedia, {true, false, VdbEncoding::Float}), "glow.comp");
     // The sampled fog shadows of ellipsoids and cylinders (shaders/CMakeLists.txt BRUME_SHAPES_SHADERS).
     VariantKey shaped;
     shaped.shapes = true;
     EXPECT_EQ(variantShaderName("distant_fog", Variant::Shapes, shaped), "distant_fog_shapes.comp");
     EXPECT_EQ(variantShaderName("distant_fog", Variant::Shapes, {}), "distant_fog.comp");
     EXPECT_EQ(variantShaderName("light_exact", Variant::Shapes, shaped), "light_exact_shapes.comp");
+    EXPECT_EQ(variantShaderName("light_exact", Variant::LightMedia, shaped), "light_exact_media_shapes.comp");
     VariantKey vdbShaped = shaped;
     vdbShaped.vdb = true;
     vdbShaped.encoding = VdbEncoding::Fp16;

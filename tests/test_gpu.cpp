@@ -649,6 +649,68 @@ TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
     EXPECT_LE(differ, 3);
 }
 
+// Without vdb volumes the light passes and the glow compute the media where they use them, and
+// voxelize runs only when the volumes are read back (gpu/frame_table.h VariantKey::inlineMedia). A
+// frame without the read-back must render the image the frame with it renders, bit for bit: first
+// frames, frames in motion (the temporal pass reads the light pass's sigma_t) and at rest
+// (integrate_rest reads it), for a scene whose media fill a box of the grid only (cleared outside),
+// with emission and a glowing light in the fog, and for one with unbounded fog and an influencer.
+TEST_F(GpuTest, MediaComputedByTheLightPassRenderTheImageVoxelizeRenders) {
+    Scene boxed = baseScene();
+    Volume glow = box();
+    glow.medium.emission = {0.3f, 0.1f, 0.0f};
+    glow.transform.scale = {2.0f, 1.5f, 2.0f};
+    glow.transform.translation = {0.5f, 0.8f, -0.5f};
+    boxed.volumes = {box(), glow};
+    boxed.lights = {sun(), pointLight({0.3f, 1.0f, 0.0f}, {1.0f, 0.5f, 0.2f}), spotLight()};
+    boxed.geometry = ground();
+    Scene open = baseScene();
+    open.volumes = {box(), height(HeightProfile::Exponential), depthFog()};
+    open.lights = {sun(), pointLight({-1.0f, 1.0f, 1.0f}, {0.2f, 0.5f, 1.0f})};
+    Influencer f;
+    f.type = InfluencerType::Sphere;
+    f.radius = 1.0f;
+    f.strength = 0.8f;
+    f.path.target = "position";
+    f.path.keys = {Keyframe{0.0f, glm::vec3(0.0f, 1.0f, 0.0f)}};
+    open.influencers = {f};
+    for (const Scene* scene : {&boxed, &open}) {
+        const char* what = scene == &boxed ? "boxed media" : "open media + influencer";
+        // First frame, two frames orbiting (history kept), then two at rest.
+        std::vector<Scene> frames(5, *scene);
+        for (int i = 1; i <= 2; ++i) {
+            const glm::vec3 offset = frames[i].camera.position - frames[i].camera.target;
+            const float a = glm::radians(4.0f * static_cast<float>(i));
+            frames[i].camera.position = frames[i].camera.target + glm::vec3(std::cos(a) * offset.x + std::sin(a) * offset.z,
+                                                                             offset.y,
+                                                                             -std::sin(a) * offset.x + std::cos(a) * offset.z);
+        }
+        frames[3] = frames[4] = frames[2];
+        std::vector<GpuRender> withReadback, without;
+        for (bool readBack : {true, false}) {
+            for (size_t i = 0; i < frames.size(); ++i) {
+                RenderRequest r = smallRequest();
+                r.history = i == 0 ? HistoryMode::Restart : HistoryMode::Continue;
+                auto g = renderer->render(frames[i], r, readBack);
+                ASSERT_TRUE(g.ok()) << what << ": " << g.error().message;
+                (readBack ? withReadback : without).push_back(std::move(g.value()));
+            }
+        }
+        for (size_t i = 0; i < frames.size(); ++i) {
+            const std::vector<glm::vec3>& a = without[i].image.pixels;
+            const std::vector<glm::vec3>& b = withReadback[i].image.pixels;
+            ASSERT_EQ(a.size(), b.size());
+            size_t differ = 0;
+            for (size_t k = 0; k < a.size(); ++k) differ += a[k] != b[k] ? 1 : 0;
+            EXPECT_EQ(differ, 0u) << what << ", frame " << i << ": pixels that differ";
+            EXPECT_EQ(without[i].litFroxels, withReadback[i].litFroxels) << what << ", frame " << i;
+        }
+        // The frames differ from one another (the test sees motion and the history's blend).
+        EXPECT_GT(relativeMeanAbsError(withReadback[1].image, withReadback[0].image), 1e-4) << what;
+        EXPECT_GT(relativeMeanAbsError(withReadback[3].image, withReadback[2].image), 0.0) << what;
+    }
+}
+
 TEST_F(GpuTest, EmptySceneIsTheAmbientSky) {
     Scene s = baseScene();
     auto gpu = renderer->render(s, smallRequest());

@@ -115,8 +115,11 @@
 
 // What the images hold:
 //   mediaScatteringG       rgb sigma_s [1/m], a phase g        (voxelize)
-//   mediaExtinction        rgb sigma_t [1/m]                   (voxelize; temporal resolves it)
+//   mediaExtinction        rgb sigma_t [1/m]                   (voxelize, or the light pass's _media
+//                                                               variants; temporal resolves it)
 //   mediaEmission          rgb emission                         (voxelize)
+//   Without vdb volumes the light passes and the glow compute the media themselves and voxelize runs
+//   only for the read-back volumes (gpu/frame_table.h VariantKey::inlineMedia).
 //   sourceImage            rgb source S                         (light; temporal resolves it)
 //   integratedScattering   camera -> far side of each slice     (integrate)
 //   integratedTransmittance                                     (integrate)

@@ -20,7 +20,7 @@
     X(SPEC_VOLUME_LIST, 8, 0)          /* VOLUME_* of volume i in bits 3i..3i+2 (SPEC_MAX_LISTED_VOLUMES) */ \
     X(SPEC_INFLUENCERS, 9, 1)          /* 0: no influencer sample (voxelize leaves the factor out) */      \
     X(SPEC_SHADOW_REDUCTION, 10, 0)    /* frame.shadowReduction (the light pass's cell levels); 0: read it */ \
-    X(SPEC_EMISSION, 11, 1)            /* 0: no volume emits: voxelize leaves mediaEmission's store out */ \
+    X(SPEC_EMISSION, 11, 1)            /* 0: no volume emits: no mediaEmission store or load */ \
     X(SPEC_GREY_FOG_SHADOWS, 12, 0)    /* 1: every volume's sigma_s + sigma_a is grey: one exp per light */ \
     X(SPEC_SPOT_LIGHTS, 13, 1)         /* 0: no spot light: evalLightNear's cone is left out */
 

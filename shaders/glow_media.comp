@@ -1,0 +1,6 @@
+// The glow for scenes without vdb volumes: glow_body.glsl with the media at the glow's froxel
+// computed (media_at.glsl), not loaded from voxelize's images.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define BRUME_INLINE_MEDIA
+#include "glow_body.glsl"
