@@ -371,9 +371,9 @@ bool voxelizeDispatches(const VariantKey& variant, bool readBackVolumes) {
 }
 
 // Outside the media region the voxelize and light passes would write 0 (core/media_region.h): when
-// the region is not the whole grid, clear what they write that a later pass reads there (sigma_t and
-// S, read by the temporal and integrate passes over their larger region; sigma_s and g, read by the
-// glow when it loads them), then dispatch over the region. mediaEmission is read outside the region,
+// the region is not the whole grid, clear what they write that a later pass reads there (S and
+// sigma_t, read by the temporal and integrate passes over their larger region; sigma_s and g, read by
+// the glow when it loads them), then dispatch over the region. mediaEmission is read outside the region,
 // or at all when no volume emits (SPEC_EMISSION 0: voxelize leaves its store out, the light passes
 // read 0 without a load), only by the read-back volumes: it is cleared for them alone, a memset of
 // the whole grid (~2% of a `high` frame: docs/performance.md, "fuse").
@@ -384,8 +384,10 @@ void recordClearMedia(const PassContext& ctx) {
     auto cleared = [&](ResRef w) {
         if (w.kind != ResRef::Kind::Image) return false;
         if (w == ResRef(ImageId::mediaEmission)) return ctx.readBackVolumes && (partial || !r.mediaEmits);
-        // Inline media: only the read-back volumes read mediaScatteringG (glow computes it).
-        if (w == ResRef(ImageId::mediaScatteringG)) return partial && dispatches;
+        // Inline media: only the read-back volumes read mediaScatteringG (glow computes it), and nothing
+        // reads mediaExtinction (the light pass computes sigma_t and stores it in sourceImage and
+        // sourceExtinction, which are cleared here for the temporal and integrate passes).
+        if (w == ResRef(ImageId::mediaScatteringG) || w == ResRef(ImageId::mediaExtinction)) return partial && dispatches;
         return partial;
     };
     bool any = false;

@@ -35,14 +35,15 @@ const std::array<PassDecl, 15> kPasses{{
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
      {B::frame, T::volumeTexels, B::vdbGrids, B::influence},
-     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage}, true, true},
+     {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage, I::sourceExtinction}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
-    // Without vdb volumes (_media) it computes the media itself and stores sigma_t (VariantKey::inlineMedia).
+    // Without vdb volumes (_media) it computes the media itself (VariantKey::inlineMedia). S and sigma_t
+    // go out in 6 words, sourceImage (S, sigma_t.r) and sourceExtinction (sigma_t.gb).
     {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
-     {I::sourceImage, I::mediaExtinction, B::counters, B::exactList}, true, true},
+     {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
@@ -53,7 +54,7 @@ const std::array<PassDecl, 15> kPasses{{
     // (core/media_region.h) into the history's output, which the later passes read. At rest it only
     // clears stale history: integrate_rest resolves each froxel itself.
     {"temporal", "temporal", Variant::None, Dispatch::RegionFroxels, When::Always, Record::TemporalCopy,
-     {B::frame, B::previousFrame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource),
+     {B::frame, B::previousFrame, I::sourceImage, I::sourceExtinction, historyIn(H::historySource),
       historyIn(H::historyExtinction)},
      {historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // Front to back along each froxel column (closed-form slabs), over the temporal region's columns.
@@ -61,7 +62,7 @@ const std::array<PassDecl, 15> kPasses{{
     // as the temporal pass would have. The resolved S and sigma_t are read from the history's output
     // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
     {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
-     {B::frame, I::sourceImage, I::mediaExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
+     {B::frame, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
       historyOut(H::historySource), historyOut(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // The deepest scene depth of each 8x8 pixel tile, with distant fog: the distant fog pass's corners

@@ -6,7 +6,7 @@
 // it reads neighbours), writes the result to the history's *_OUT side, and integrates it. One pass over
 // the froxels instead of two (docs/performance.md, "voxel"). The later readers of the resolved S and
 // sigma_t (glow, debug view, readback) read the *_OUT side, which holds them in motion too, so the
-// result is not stored over sourceImage and mediaExtinction as well (docs/performance.md, "media").
+// result is not stored over sourceImage and sourceExtinction as well (docs/performance.md, "media").
 // Dispatched over the columns of the temporal region only (region.lo.xy + invocation; core/
 // media_region.h temporalFroxelRegion): S and sigma_t are 0 outside it, so the frame clears the
 // integrated volumes to scattering 0 and transmittance 1 first (in front of the region and in the
@@ -36,8 +36,10 @@ void main() {
 #ifdef BRUME_TEMPORAL_REST
         vec4 a = imageLoad(historySourceIn, id);
         vec4 b = imageLoad(historyExtinctionIn, id);
-        vec4 source = resolveTemporalAtRest(imageLoad(sourceImage, id), historySourceOf(a), frame.temporal.x);
-        vec4 extinction = resolveTemporalAtRest(imageLoad(mediaExtinction, id), historyExtinctionOf(a, b), frame.temporal.x);
+        vec4 c = imageLoad(sourceImage, id);
+        vec4 source = resolveTemporalAtRest(historySourceOf(c), historySourceOf(a), frame.temporal.x);
+        vec4 extinction = resolveTemporalAtRest(historyExtinctionOf(c, imageLoad(sourceExtinction, id)),
+                                                historyExtinctionOf(a, b), frame.temporal.x);
         imageStore(historySourceOut, id, historyTexelA(source, extinction));
         imageStore(historyExtinctionOut, id, historyTexelB(extinction));
         acc = accumulateSlab(acc, source.rgb, extinction.rgb, d);

@@ -133,7 +133,8 @@ void lightFroxel(ivec3 id) {
                      lightMapVisibility(i, p, sun);
     }
     vec3 source = scatteringG.rgb * perSigmaS + media.emission;
-    imageStore(sourceImage, id, vec4(source, 0.0f));
+    // sigma_t.r beside S as light.comp stored it (its sigma_t.gb in sourceExtinction stays).
+    imageStore(sourceImage, id, historyTexelA(vec4(source, 0.0f), vec4(media.sigmaT, 0.0f)));
 }
 #else
 // Appends the froxels of the run starting at `first` whose bit is set in `run` (bit k: first + k along
@@ -263,11 +264,11 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
         if (valid[j]) {
             ivec3 id = ivec3(xy, z0 + j);
             vec3 source = media[j] ? scatteringG[j].rgb * perSigmaS[j] + emission[j] : emission[j];
-            imageStore(sourceImage, id, vec4(source, 0.0f));
-#ifdef BRUME_INLINE_MEDIA
-            // What voxelize would have stored: the temporal and integrate passes read it.
-            imageStore(mediaExtinction, id, vec4(sigmaT[j], 0.0f));
-#endif
+            // S and sigma_t in the history's layout (resources.glsl): the temporal and integrate passes
+            // read them there.
+            vec4 extinction = vec4(sigmaT[j], 0.0f);
+            imageStore(sourceImage, id, historyTexelA(vec4(source, 0.0f), extinction));
+            imageStore(sourceExtinction, id, historyTexelB(extinction));
             if (media[j]) ++lit;
             if (media[j] && exact[j]) bits |= 1u << uint(j);
         }

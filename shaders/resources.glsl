@@ -72,4 +72,6 @@ vec4 historyTexelA(vec4 source, vec4 extinction) { return vec4(source.rgb, extin
 vec4 historyTexelB(vec4 extinction) { return vec4(extinction.gb, 0.0f, 0.0f); }
 vec4 historySourceOf(vec4 a) { return vec4(a.rgb, 0.0f); }
 vec4 historyExtinctionOf(vec4 a, vec4 b) { return vec4(a.a, b.rg, 0.0f); }
+// The light pass's output, sourceImage (S.rgb, sigma_t.r) and sourceExtinction (sigma_t.gb), packs the
+// same way: the same four functions apply to it.
 #endif

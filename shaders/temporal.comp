@@ -4,7 +4,7 @@
 // media_region.h temporalFroxelRegion): outside it S and sigma_t are 0 and the history was cleared.
 // In motion the history is reprojected, clamped to the current neighbourhood and checked for NaN/Inf;
 // the result goes to the history pair's *_OUT images, where integrate, glow, debug view and readback
-// read it (this pass reads sourceImage's and mediaExtinction's neighbours, so it cannot write them).
+// read it (this pass reads sourceImage's and sourceExtinction's neighbours, so it cannot write them).
 // Frames whose view rests or that have no history dispatch nothing here: integrate_rest.comp resolves
 // each froxel with its own history as it integrates (integrate.comp).
 #version 450
@@ -20,16 +20,26 @@ const ivec3 kNeighbours[7] = ivec3[7](ivec3(0, 0, 0), ivec3(-1, 0, 0), ivec3(1, 
 
 bool inGrid(ivec3 c, ivec3 dims) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, dims)); }
 
-// The froxel and its six face neighbours inside the grid, for S (which = 0) or sigma_t (which = 1).
-Bounds neighbourhood(ivec3 c, int which) {
-    Bounds b = emptyBounds();
+// The froxel's S and sigma_t, each (rgb, 0), from the light pass's two texels (resources.glsl).
+void currentAt(ivec3 c, out vec4 source, out vec4 extinction) {
+    vec4 a = imageLoad(sourceImage, c);
+    source = historySourceOf(a);
+    extinction = historyExtinctionOf(a, imageLoad(sourceExtinction, c));
+}
+
+// The froxel and its six face neighbours inside the grid: the bounds of S and of sigma_t.
+void neighbourhood(ivec3 c, out Bounds source, out Bounds extinction) {
+    source = emptyBounds();
+    extinction = emptyBounds();
     ivec3 dims = frame.froxelDims.xyz;
     for (int i = 0; i < 7; ++i) {
         ivec3 n = c + kNeighbours[i];
         if (!inGrid(n, dims)) continue;
-        b = growBounds(b, which == 0 ? imageLoad(sourceImage, n) : imageLoad(mediaExtinction, n));
+        vec4 s, e;
+        currentAt(n, s, e);
+        source = growBounds(source, s);
+        extinction = growBounds(extinction, e);
     }
-    return b;
 }
 
 // The history read for S and for sigma_t; each corner's two texels (resources.glsl: the layout) are
@@ -52,8 +62,12 @@ void main() {
     HistorySample histS = emptyHistorySample();
     HistorySample histE = emptyHistorySample();
     if (k.weight > 0.0f) readHistory(k, histS, histE);
-    vec4 source = resolveTemporal(imageLoad(sourceImage, id), histS, neighbourhood(id, 0), k.weight, true);
-    vec4 extinction = resolveTemporal(imageLoad(mediaExtinction, id), histE, neighbourhood(id, 1), k.weight, true);
+    vec4 s, e;
+    currentAt(id, s, e);
+    Bounds boundsS, boundsE;
+    neighbourhood(id, boundsS, boundsE);
+    vec4 source = resolveTemporal(s, histS, boundsS, k.weight, true);
+    vec4 extinction = resolveTemporal(e, histE, boundsE, k.weight, true);
     imageStore(historySourceOut, id, historyTexelA(source, extinction));
     imageStore(historyExtinctionOut, id, historyTexelB(extinction));
 }

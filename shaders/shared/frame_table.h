@@ -111,16 +111,21 @@
     X(integratedTransmittance, 15, rgba16, image3D, FRAME_READBACK) \
     X(sceneColor, 16, rgba32f, image2D, TARGET) \
     X(sceneDepth, 17, r32f, image2D, TARGET) \
-    X(outputImage, 18, rgba32f, image2D, FRAME_OUTPUT)
+    X(outputImage, 18, rgba32f, image2D, FRAME_OUTPUT) \
+    X(sourceExtinction, 36, rg32f, image3D, FRAME)
 
 // What the images hold:
 //   mediaScatteringG       rgb sigma_s [1/m], a phase g        (voxelize)
-//   mediaExtinction        rgb sigma_t [1/m]                   (voxelize, or the light pass's _media
-//                                                               variants; temporal resolves it)
+//   mediaExtinction        rgb sigma_t [1/m]                   (voxelize; the light pass reads it
+//                                                               where it does not compute the media)
 //   mediaEmission          rgb emission                         (voxelize)
 //   Without vdb volumes the light passes and the glow compute the media themselves and voxelize runs
 //   only for the read-back volumes (gpu/frame_table.h VariantKey::inlineMedia).
-//   sourceImage            rgb source S                         (light; temporal resolves it)
+//   sourceImage            rgb source S, a sigma_t.r            (light; temporal resolves them)
+//   sourceExtinction       rg sigma_t.g, sigma_t.b              (light): the froxel's S and sigma_t in
+//                          6 words, as the history holds them (resources.glsl sourceTexelA / B), where
+//                          they took 8 in sourceImage and mediaExtinction, whose alphas were 0: stores
+//                          cost lavapipe per word (docs/performance.md, "pack")
 //   integratedScattering   camera -> far side of each slice     (integrate)
 //   integratedTransmittance                                     (integrate)
 //                          in [0, 1], 16-bit unsigned normalized: rounded by at most 0.5 / 65535 (7.6e-6)
