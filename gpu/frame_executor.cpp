@@ -410,8 +410,8 @@ void recordClearMedia(const PassContext& ctx) {
     if (dispatches) dispatchPass(ctx);
 }
 
-void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW) {
-    const shd::FroxelRegionParams p{glm::ivec4(region.lo, loW), glm::ivec4(region.hi, 0)};
+void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW, int hiW) {
+    const shd::FroxelRegionParams p{glm::ivec4(region.lo, loW), glm::ivec4(region.hi, hiW)};
     vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
 }
 
@@ -513,7 +513,6 @@ void dispatchPass(const PassContext& ctx) {
             break;
         }
         case Dispatch::DepthTiles: {
-            if (!r.distantFog) break;  // no reader
             const glm::ivec2 tiles = shd::depthTileCount(r.size);
             vkCmdDispatch(ctx.cmd, groups(tiles.x, shd::SCREEN_GROUP_X), groups(tiles.y, shd::SCREEN_GROUP_Y), 1);
             break;
@@ -582,6 +581,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         ctx.sphereVertices = mesh.sphereVertices;
         // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
         ctx.readBackVolumes = readBackVolumes;
+        ctx.poisonIntegrated = poisonIntegrated;
         // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
         const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest) &&
                                 !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));

@@ -30,6 +30,11 @@ const std::array<PassDecl, 15> kPasses{{
      {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels, B::localShadowMaps,
       T::volumeTexels},
      {I::sceneColor, I::sceneDepth}, true},
+    // The deepest and shallowest scene depth of each 8x8 pixel tile: integrate keeps the entries of
+    // each column its pixels can read, and with distant fog the distant fog pass's corners and the
+    // composite's tile lists read it (shared/distant_table.h).
+    {"depth tiles", "depth_tiles", Variant::None, Dispatch::DepthTiles, When::SurfacesChanged, Record::Dispatch,
+     {B::frame, I::sceneDepth}, {B::depthTiles}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
@@ -62,13 +67,9 @@ const std::array<PassDecl, 15> kPasses{{
     // as the temporal pass would have. The resolved S and sigma_t are read from the history's output
     // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
     {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
-     {B::frame, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
+     {B::frame, B::depthTiles, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
       historyOut(H::historySource), historyOut(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
-    // The deepest scene depth of each 8x8 pixel tile, with distant fog: the distant fog pass's corners
-    // and the composite's tile lists read it (shared/distant_table.h).
-    {"depth tiles", "depth_tiles", Variant::None, Dispatch::DepthTiles, When::SurfacesChanged, Record::Dispatch,
-     {B::frame, I::sceneDepth}, {B::depthTiles}, true},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);
     // the composite interpolates it.

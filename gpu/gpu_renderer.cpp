@@ -95,6 +95,7 @@ Result<std::unique_ptr<GpuRenderer>> GpuRenderer::create(const GpuOptions& optio
     s->device = std::move(d.value());
     s->froxelRegions = options.froxelRegions;
     s->poisonShadowVolume = options.poisonShadowVolume;
+    s->poisonIntegrated = options.poisonIntegrated;
     BRUME_TRY(s->createCommands());
     BRUME_TRY(s->createPasses());
     return std::unique_ptr<GpuRenderer>(new GpuRenderer(std::move(s)));

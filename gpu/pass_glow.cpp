@@ -1,4 +1,6 @@
 // Glow pass (shaders/glow.comp; reads and writes in frame_table.cpp).
+#include <algorithm>
+
 #include "passes.h"
 
 namespace brume::gpu {
@@ -7,9 +9,16 @@ std::vector<shd::GlowParams> glowDispatches(const std::vector<shd::LightData>& l
                                             const std::vector<int>& glowLights) {
     std::vector<shd::GlowParams> out;
     for (int index : glowLights) {
-        const glm::ivec4 rect = shd::lightGlowScreenRect(lights[static_cast<size_t>(index)], frame);
+        const shd::LightData& l = lights[static_cast<size_t>(index)];
+        const glm::ivec4 rect = shd::lightGlowScreenRect(l, frame);
         if (rect.z < rect.x || rect.w < rect.y) continue;
-        out.push_back({rect, glm::ivec4(index, 0, 0, 0)});
+        // The glow reads the integrated transmittance where a pixel's ray enters the ball: at view
+        // depths within the ball's radius of the light's (0 from inside it). The integrate pass keeps
+        // those entries in every column (integrate.comp).
+        const float depth = -(frame.viewFromWorld * glm::vec4(glm::vec3(l.positionRange), 1.0f)).z;
+        const float radius = shd::lightGlowRadius(l, frame);
+        const glm::ivec2 entries = shd::integratedEntryRange(std::max(depth - radius, 0.0f), std::max(depth + radius, 0.0f), frame);
+        out.push_back({rect, glm::ivec4(index, entries.x, entries.y, 0)});
     }
     return out;
 }

@@ -4,8 +4,10 @@
 // The resolved S and sigma_t live in the history's *_OUT side, where integrate, glow, debug view and
 // readback read them: in motion the temporal pass writes them there; at rest it only clears, and
 // integrate_rest resolves and writes them.
+#include <algorithm>
 #include <array>
 #include <initializer_list>
+#include <limits>
 
 #include "passes.h"
 #include "shaders/shared/bindings.h"
@@ -60,14 +62,33 @@ void recordTemporal(const PassContext& ctx) {
 
 void recordIntegrate(const PassContext& ctx) {
     const FrameResources& r = *ctx.res;
-    if (!wholeGrid(r)) {
+    if (wholeGrid(r) && ctx.poisonIntegrated) {
+        // Tests: an entry the pass leaves unstored reads NaN scattering (GpuOptions::poisonIntegrated).
+        VkClearColorValue nan{};
+        nan.float32[0] = nan.float32[1] = nan.float32[2] = std::numeric_limits<float>::quiet_NaN();
+        VkClearColorValue half{};
+        half.float32[0] = half.float32[1] = half.float32[2] = 0.5f;
+        clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), nan},
+                              {r[ImageId::integratedTransmittance].image.get(), half}});
+    } else if (!wholeGrid(r)) {
         // Empty froxels integrate to scattering 0 and transmittance 1 (alpha 0, as the shader writes).
         VkClearColorValue one{};
         one.float32[0] = one.float32[1] = one.float32[2] = 1.0f;
         clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), VkClearColorValue{}},
                               {r[ImageId::integratedTransmittance].image.get(), one}});
     }
-    pushRegion(ctx, r.temporalRegion);
+    // Entries stored in every column beyond those the composite's lookups read (integrate.comp): all of
+    // them for the read-back volumes and the debug views, else the glow's (none without glow).
+    glm::ivec2 everywhere(1, 0);
+    if (ctx.readBackVolumes || ctx.debugParams.view.x != shd::DEBUG_VIEW_FINAL) {
+        everywhere = glm::ivec2(0, r.froxelDims.z - 1);
+    } else if (ctx.glow) {
+        for (const shd::GlowParams& g : *ctx.glow) {
+            everywhere.x = everywhere.y < everywhere.x ? g.light.y : std::min(everywhere.x, g.light.y);
+            everywhere.y = std::max(everywhere.y, g.light.z);
+        }
+    }
+    pushRegion(ctx, r.temporalRegion, everywhere.x, everywhere.y);
     dispatchPass(ctx);
 }
 

@@ -25,6 +25,7 @@ struct PassContext {
     int historyWriteIndex = 0;              // the history side written this frame
     const VariantKey* variant = nullptr;     // this frame's shader variants
     bool readBackVolumes = false;            // the froxel volumes are read back after the frame
+    bool poisonIntegrated = false;           // GpuOptions::poisonIntegrated (tests)
     shd::DebugViewParams debugParams{};
     const std::vector<shd::GlowParams>* glow = nullptr;  // glow: one dispatch each
     glm::vec3 ambient{0.0f};    // geometry: sky radiance
@@ -36,8 +37,9 @@ struct PassContext {
 // Binds ctx.pipeline and the set and dispatches ctx.pass's rule.
 void dispatchPass(const PassContext& ctx);
 
-// Pushes region as the pass's shd::FroxelRegionParams, loW in lo.w (the shadow volume's light).
-void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW = 0);
+// Pushes region as the pass's shd::FroxelRegionParams, loW in lo.w (the shadow volume's light, the
+// integrate pass's first entry stored in every column), hiW in hi.w (the integrate pass's last one).
+void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW = 0, int hiW = 0);
 
 // Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
 void recordShadowCells(const PassContext& ctx);

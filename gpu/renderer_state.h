@@ -40,6 +40,7 @@ struct GpuRenderer::State {
     std::vector<uint8_t> surfaceInputs;
     bool froxelRegions = true;           // GpuOptions::froxelRegions
     bool poisonShadowVolume = false;     // GpuOptions::poisonShadowVolume
+    bool poisonIntegrated = false;       // GpuOptions::poisonIntegrated
     // A prepare that failed part-way (out of GPU memory) may have replaced resources without
     // rewriting the descriptors: the next prepare rewrites them all.
     bool descriptorsStale = false;

@@ -1,8 +1,9 @@
 // The deepest and the shallowest view depth of each 8x8 pixel tile of the scene depth (shared/
-// distant_table.h depthTileIndex), with distant fog only: the distant fog pass takes each table
-// corner's deepest pixel from its (at most 4) tiles instead of reading its 16x16 pixels itself (every
-// pixel read once instead of 4 times), and the tile lists pass sorts the tiles for the composite by
-// both (docs/performance.md, "pixel" and "allfar").
+// distant_table.h depthTileIndex): the integrate pass stores only the entries of each column that the
+// depths of its pixels can read (integrate.comp; docs/performance.md, "keep"); with distant fog, the
+// distant fog pass takes each table corner's deepest pixel from its (at most 4) tiles instead of
+// reading its 16x16 pixels itself (every pixel read once instead of 4 times), and the tile lists pass
+// sorts the tiles for the composite by both (docs/performance.md, "pixel" and "allfar").
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
@@ -12,8 +13,6 @@
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
 
 void main() {
-    // SPEC_DISTANT_FOG 0: no pass reads the tiles.
-    if (SPEC_DISTANT_FOG == 0) return;
     ivec2 tiles = depthTileCount(frame.counts.xy);
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(t, tiles))) return;

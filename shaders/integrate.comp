@@ -15,9 +15,43 @@
 #extension GL_GOOGLE_include_directive : require
 #define BRUME_FROXEL_IMAGES
 #include "resources.glsl"
+#include "distant_table.h"
 
 layout(local_size_x = INTEGRATE_GROUP_X, local_size_y = INTEGRATE_GROUP_Y, local_size_z = 1) in;
+// lo.w .. hi.w (inclusive): entries stored in every column: the glow's, or all of them when the
+// volumes are read back or a debug view shows a slice (frame_executor.cpp recordIntegrate).
 layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
+
+// The entries of `column` that the composite's lookups can read (shd::integratedLookup): a pixel reads
+// the columns around its centre, so column c serves the pixels within a column of its own, those of
+// [(c - 0.5) T, (c + 1.5) T) for T pixels a column, and the last column the image's edge beyond; with
+// a column of margin, [(c - 1) T, (c + 2) T). Their depths are within the depth tiles' (depth_tiles.comp)
+// shallowest and deepest, whose entries integratedEntryRange gives. The entries no lookup reads are not
+// stored: at 1280x720 `high` most of a column lies in front of its surfaces or behind them, and a store
+// costs lavapipe a loop per word and lane (docs/performance.md, "keep").
+ivec2 columnEntryRange(ivec2 column) {
+    ivec2 size = frame.counts.xy;
+    int px = frame.froxelDims.w;
+    ivec2 lo = max((column - ivec2(1)) * px, ivec2(0));
+    ivec2 hi = min((column + ivec2(2)) * px - ivec2(1), size - ivec2(1));
+    if (column.x == frame.froxelDims.x - 1) hi.x = size.x - 1;
+    if (column.y == frame.froxelDims.y - 1) hi.y = size.y - 1;
+    ivec2 tiles = depthTileCount(size);
+    ivec2 t0 = lo / DISTANT_TILE_PX;
+    ivec2 t1 = hi / DISTANT_TILE_PX;
+    float deepest = 0.0f;
+    float shallowest = BRUME_HUGE;
+    for (int ty = t0.y; ty <= t1.y; ++ty)
+        for (int tx = t0.x; tx <= t1.x; ++tx) {
+            vec2 range = depthTileRange[depthTileIndex(tiles, ivec2(tx, ty))];
+            deepest = max(deepest, range.x);
+            shallowest = min(shallowest, range.y);
+        }
+    return integratedEntryRange(shallowest, deepest, frame);
+}
+
+// Whether entry s of a column whose lookups read `read` is stored.
+bool storedEntry(int s, ivec2 read) { return (s >= read.x && s <= read.y) || (s >= region.lo.w && s <= region.hi.w); }
 
 void main() {
     ivec2 column = region.lo.xy + ivec2(gl_GlobalInvocationID.xy);
@@ -28,6 +62,7 @@ void main() {
     // lavapipe): slice s's far boundary is slice s + 1's near one.
     float rayScale = length(viewRayFromPixel(pixel, frame));
     float zNear = sliceBoundaryDepth(region.lo.z, frame);
+    ivec2 read = columnEntryRange(column);
     for (int s = region.lo.z; s < region.hi.z; ++s) {
         ivec3 id = ivec3(column, s);
         float zFar = sliceBoundaryDepth(s + 1, frame);
@@ -48,12 +83,16 @@ void main() {
         vec4 a = imageLoad(historySourceOut, id);
         acc = accumulateSlab(acc, a.rgb, historyExtinctionOf(a, imageLoad(historyExtinctionOut, id)).rgb, d);
 #endif
-        imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
-        imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
+        if (storedEntry(s, read)) {
+            imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
+            imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
+        }
     }
     for (int s = region.hi.z; s < frame.froxelDims.z; ++s) {
         ivec3 id = ivec3(column, s);
-        imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
-        imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
+        if (storedEntry(s, read)) {
+            imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));
+            imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
+        }
     }
 }

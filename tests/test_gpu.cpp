@@ -711,6 +711,45 @@ TEST_F(GpuTest, MediaComputedByTheLightPassRenderTheImageVoxelizeRenders) {
     }
 }
 
+// The integrate pass stores only the entries of each column that its pixels' depths (the depth tiles)
+// or a glow can read (shaders/integrate.comp); the read-back volumes get every entry. With the
+// integrated scattering poisoned before each frame (the fixture: GpuOptions::poisonIntegrated), a frame
+// that read an entry left unstored would not be finite and would differ from the same frame with the
+// read-back. Scenes with surfaces near and far, sky, distant fog past the froxel far, glowing lights
+// (one around the camera), at odd sizes where the last column and row are partial, at each preset.
+TEST_F(GpuTest, EntriesTheIntegratePassLeavesUnstoredAreNeverRead) {
+    Scene s = baseScene();
+    s.camera.far = 200.0f;
+    s.volumes = {box(), height(HeightProfile::Exponential), depthFog()};
+    s.lights = {sun(), pointLight({-1.0f, 1.0f, 1.0f}, {1.0f, 0.5f, 0.2f}), spotLight(),
+                pointLight({0.4f, 1.2f, 2.5f}, {0.2f, 0.5f, 1.0f})};
+    s.geometry = ground();
+    Scene inside = s;  // the camera inside a light's glow ball
+    inside.lights.push_back(pointLight(inside.camera.position + glm::vec3(0.05f, -0.05f, -0.1f), {1.0f, 1.0f, 1.0f}));
+    int compared = 0;
+    for (const Scene* scene : {&s, &inside})
+        for (Quality q : {Quality::Low, Quality::Medium, Quality::High})
+            for (glm::ivec2 size : {glm::ivec2(160, 90), glm::ivec2(133, 71)}) {
+                RenderRequest r = smallRequest();
+                r.quality = q;
+                r.width = size.x;
+                r.height = size.y;
+                auto cut = renderer->render(*scene, r, false);
+                auto all = renderer->render(*scene, r, true);
+                ASSERT_TRUE(cut.ok()) << cut.error().message;
+                ASSERT_TRUE(all.ok()) << all.error().message;
+                const std::string what = std::string(toString(q)) + " " + std::to_string(size.x) + "x" +
+                                         std::to_string(size.y) + (scene == &inside ? ", camera in a glow" : "");
+                EXPECT_TRUE(brume::allFinite(cut.value().image)) << what;
+                size_t differ = 0;
+                for (size_t k = 0; k < all.value().image.pixels.size(); ++k)
+                    differ += cut.value().image.pixels[k] != all.value().image.pixels[k] ? 1 : 0;
+                EXPECT_EQ(differ, 0u) << what << ": pixels that differ";
+                ++compared;
+            }
+    EXPECT_EQ(compared, 12);
+}
+
 TEST_F(GpuTest, EmptySceneIsTheAmbientSky) {
     Scene s = baseScene();
     auto gpu = renderer->render(s, smallRequest());
@@ -727,8 +766,8 @@ TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
     ASSERT_TRUE(renderer->render(s, smallRequest()).ok());  // warm-up: first dispatches compile shaders
     auto gpu = renderer->render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
-    const std::vector<std::string> expected{"shadow volume", "geometry",    "voxelize",  "light", "light exact",
-                                            "temporal",      "integrate",   "depth tiles", "distant fog",
+    const std::vector<std::string> expected{"shadow volume", "geometry",    "depth tiles", "voxelize", "light",
+                                            "light exact",   "temporal",    "integrate",   "distant fog",
                                             "tile lists",    "composite",   "composite far", "composite all far",
                                             "glow",          "readback"};
     ASSERT_EQ(gpu.value().passes.size(), expected.size());

@@ -94,6 +94,18 @@ BRUME_FUNC float integratedEntryFromViewDepth(float z, FrameUniforms f) {
     return t * float(f.froxelDims.z) - 1.0f;
 }
 
+// The entries integratedLookup (below) can read for view depths in [zLo, zHi]: its e0 at zLo to its
+// e1 at zHi, widened by one entry on each side (the depth-to-entry mapping's rounding need not be
+// monotonic to the last bit), within the grid. The integrate pass stores only the entries some pixel
+// or the glow can read (integrate.comp).
+BRUME_FUNC ivec2 integratedEntryRange(float zLo, float zHi, FrameUniforms f) {
+    int last = f.froxelDims.z - 1;
+    float lastEntry = float(last);
+    int e0 = int(floor(max(min(integratedEntryFromViewDepth(zLo, f), lastEntry), 0.0f)));
+    int e1 = min(int(floor(max(min(integratedEntryFromViewDepth(zHi, f), lastEntry), 0.0f))) + 1, last);
+    return ivec2(max(e0 - 1, 0), min(e1 + 1, last));
+}
+
 // Where the composite reads the integrated volume for a pixel (pixel-space position, e.g. the
 // pixel centre x + 0.5) at a view depth. The rule, identical on CPU and GPU:
 //   1. for each of entries.x and entries.y, bilinear between the four column centres

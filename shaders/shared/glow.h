@@ -150,7 +150,7 @@ BRUME_FUNC vec3 lightGlowPerSigmaS(LightData l, LightGlowRay r, vec3 origin, vec
 // (docs/performance.md), so in the composite it cost every pixel of the screen.
 struct GlowParams {
     ivec4 rect;   // first and last pixel (x0, y0, x1, y1) of the dispatch, inclusive
-    ivec4 light;  // x: the light's index; yzw unused
+    ivec4 light;  // x: the light's index; y, z: the integrated entries its pixels can read (inclusive); w unused
 };
 
 // Pixels (x0, y0, x1, y1), inclusive, clamped to the image, outside which no pixel centre's ray meets
