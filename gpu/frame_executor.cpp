@@ -154,6 +154,7 @@ void swapSizedResources(FrameResources& a, FrameResources& b) {
     std::swap(a.historyUndefined, b.historyUndefined);
     std::swap(a.historyWritten, b.historyWritten);
     std::swap(a.froxelDims, b.froxelDims);
+    std::swap(a.mediaImages, b.mediaImages);
     std::swap(a.size, b.size);
     std::swap(a.outputReadback, b.outputReadback);
 }
@@ -189,18 +190,43 @@ Result<void> GpuRenderer::State::parkSizedResources(glm::ivec3 dims, glm::ivec2 
     return {};
 }
 
-Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool& dirty) {
-    if (res.froxelDims == dims) return {};
+// Whether voxelize dispatches this frame: with vdb volumes always; without, the light passes and the
+// glow compute the media themselves (VariantKey::inlineMedia) and voxelize runs only to fill the media
+// images for the read-back volumes.
+bool voxelizeDispatches(const VariantKey& variant, bool readBackVolumes) {
+    return !variant.inlineMedia() || readBackVolumes;
+}
+
+// media: whether the MEDIA images (voxelize's output) get the grid's size; else one texel each. Only
+// they are made again when only that changes.
+Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool media, bool& dirty) {
+    if (res.froxelDims == dims && res.mediaImages == media) return {};
     allocated = true;
+    if (res.froxelDims == dims) {
+        for (const ImageDecl& d : kImages) {
+            if (d.shape != ImageShape::image3D || !(d.flags & image_flags::MEDIA)) continue;
+            GpuImage& slot = res[d.id];
+            slot = GpuImage{};
+            Result<GpuImage> img = createImage(*device, extentOf(media ? dims : glm::ivec3(1)), true, vkFormat(d.format),
+                                               kVolumeUsage, d.name);
+            if (!img) return img.error();
+            slot = std::move(img.value());
+        }
+        res.mediaImages = media;
+        dirty = true;
+        return {};
+    }
     res.froxelDims = glm::ivec3(0);
     for (const ImageDecl& d : kImages) {
         if (d.shape != ImageShape::image3D) continue;
         GpuImage& slot = res[d.id];
         slot = GpuImage{};  // release before allocating: peak memory stays one set of volumes
-        Result<GpuImage> img = createImage(*device, extentOf(dims), true, vkFormat(d.format), kVolumeUsage, d.name);
+        const glm::ivec3 extent = media || !(d.flags & image_flags::MEDIA) ? dims : glm::ivec3(1);
+        Result<GpuImage> img = createImage(*device, extentOf(extent), true, vkFormat(d.format), kVolumeUsage, d.name);
         if (!img) return img.error();
         slot = std::move(img.value());
     }
+    res.mediaImages = media;
     for (const HistoryDecl& d : kHistory) {
         for (size_t k = 0; k < 2; ++k) {
             GpuImage& slot = res.history[static_cast<size_t>(d.id)][k];
@@ -290,7 +316,7 @@ Result<void> GpuRenderer::State::ensureVolumeReadback(glm::ivec3 dims) {
 
 Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs,
                                          size_t vertexBytes, int shadowReduction, size_t sunShadowBytes,
-                                         size_t localShadowBytes) {
+                                         size_t localShadowBytes, bool readBackVolumes) {
     bool dirty = descriptorsStale;
     descriptorsStale = true;  // until the descriptors below are written
     allocated = false;
@@ -308,10 +334,13 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                            Memory::Upload, "geometry vertices", vertexDirty));
     BRUME_TRY(parkSizedResources(dims, size, dirty));
-    if (Result<void> f = ensureFroxelImages(dims, dirty); !f) {
+    BRUME_TRY(chooseVariant(cs));
+    // Voxelize's images at the grid's size only for the frames that run it (voxelizeDispatches).
+    const bool media = voxelizeDispatches(variant, readBackVolumes);
+    if (Result<void> f = ensureFroxelImages(dims, media, dirty); !f) {
         if (parked.froxelDims == glm::ivec3(0)) return f.error();
         releaseSizedResources(parked);  // out of memory with a set parked: give it back, try once more
-        BRUME_TRY(ensureFroxelImages(dims, dirty));
+        BRUME_TRY(ensureFroxelImages(dims, media, dirty));
     }
     // Room for every froxel: the exact light pass's list (bindings.h ExactListHeader).
     BRUME_TRY(ensureBuffer(BufferId::exactList,
@@ -334,7 +363,6 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                      "); use fewer lights or a lower quality preset."};
     BRUME_TRY(ensureBuffer(BufferId::shadowTransmittance, entries * sizeof(glm::vec4), dirty));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
-    BRUME_TRY(chooseVariant(cs));
     // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
     const glm::ivec3 c = shd::clusterDims(dims);
     const size_t clusterInts =
@@ -363,12 +391,6 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     return {};
 }
 
-// Whether voxelize dispatches this frame: with vdb volumes always; without, the light passes and the
-// glow compute the media themselves (VariantKey::inlineMedia) and voxelize runs only to fill the media
-// images for the read-back volumes.
-bool voxelizeDispatches(const VariantKey& variant, bool readBackVolumes) {
-    return !variant.inlineMedia() || readBackVolumes;
-}
 
 // Outside the media region the voxelize and light passes would write 0 (core/media_region.h): when
 // the region is not the whole grid, clear what they write that a later pass reads there (S and

@@ -43,6 +43,9 @@ struct FrameResources {
     const GpuImage& image(ResRef ref, int writeIndex) const;
 
     glm::ivec3 froxelDims{0};  // of the image3D resources
+    // Whether the MEDIA images (voxelize's output) have froxelDims too; else one texel each, bound for
+    // the descriptors only (frames that do not run voxelize: VariantKey::inlineMedia).
+    bool mediaImages = false;
     glm::ivec2 size{0};        // of the image2D resources
     // Each computed layer of the fog transmittance volume: its light, and the cells the shadow volume
     // pass computes in it (core/media_region.h shadowCellRegion of the froxels whose clusters list the

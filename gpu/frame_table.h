@@ -49,8 +49,9 @@ enum class BufferKind : uint8_t { UNIFORM, STORAGE, STORAGE_GPU, STORAGE_READBAC
 enum class ImageFormat : uint8_t { rgba32f, rgba16, r32f, r32i, rgba32i, rg32f };
 enum class ImageShape : uint8_t { image2D, image3D };
 namespace image_flags {
-inline constexpr unsigned FRAME = 1u, READBACK = 2u, TARGET = 4u, OUTPUT = 8u;
+inline constexpr unsigned FRAME = 1u, READBACK = 2u, TARGET = 4u, OUTPUT = 8u, MEDIA = 16u;
 inline constexpr unsigned FRAME_READBACK = FRAME | READBACK, FRAME_OUTPUT = FRAME | OUTPUT;
+inline constexpr unsigned FRAME_READBACK_MEDIA = FRAME_READBACK | MEDIA, FRAME_MEDIA = FRAME | MEDIA;
 }  // namespace image_flags
 
 struct BufferDecl {

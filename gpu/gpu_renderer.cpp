@@ -357,8 +357,8 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const size_t sunBytes = sun.depth.size() * sizeof(float);
     const LocalShadowMaps& local = s_->localShadows.get(cs, scene.geometry, frame.localShadowTexels, request.threads);
     const size_t localBytes = local.depth.size() * sizeof(float);
-    BRUME_TRY(s_->prepare(size, dims, cs, mesh.bytes(), frame.shadowReduction, sunBytes,
-                          localBytes));
+    BRUME_TRY(s_->prepare(size, dims, cs, mesh.bytes(), frame.shadowReduction, sunBytes, localBytes,
+                          readBackVolumes));
     if (readBackVolumes) BRUME_TRY(s_->ensureVolumeReadback(dims));
     FrameResources& r = s_->res;
     if (!cs.volumes.empty()) std::memcpy(r[BufferId::volumes].mapped, cs.volumes.data(), cs.volumes.size() * sizeof(shd::VolumeData));

@@ -62,14 +62,14 @@ struct GpuRenderer::State {
                               const char* name, bool& dirty);
     Result<void> ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty);
     Result<void> parkSizedResources(glm::ivec3 dims, glm::ivec2 size, bool& dirty);
-    Result<void> ensureFroxelImages(glm::ivec3 dims, bool& dirty);
+    Result<void> ensureFroxelImages(glm::ivec3 dims, bool media, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);
     Result<void> ensureVolumeReadback(glm::ivec3 dims);
     Result<void> ensureTexelViews(bool& dirty);
     Result<void> ensureVdbGrids(const CompiledScene& cs, bool& dirty);
     Result<void> chooseVariant(const CompiledScene& cs);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
-                         int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes);
+                         int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes, bool readBackVolumes);
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage

@@ -750,6 +750,29 @@ TEST_F(GpuTest, EntriesTheIntegratePassLeavesUnstoredAreNeverRead) {
     EXPECT_EQ(compared, 12);
 }
 
+// Without vdb volumes voxelize runs only for the read-back volumes, and its three images take the
+// grid's size only then (one texel otherwise: gpu/renderer_state.h ensureFroxelImages). Switching
+// allocates them, or gives them back, once; the images are the frames' either way.
+TEST_F(GpuTest, VoxelizeImagesTakeTheGridsMemoryOnlyWhenVoxelizeRuns) {
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.lights = {sun()};
+    const bool readBack[] = {false, false, true, true, false, false};
+    const bool allocates[] = {true, false, true, false, true, false};
+    std::vector<Image> images;
+    for (size_t i = 0; i < std::size(readBack); ++i) {
+        auto g = renderer->render(s, smallRequest(), readBack[i]);
+        ASSERT_TRUE(g.ok()) << g.error().message;
+        EXPECT_EQ(g.value().allocated, allocates[i]) << "render " << i;
+        if (readBack[i]) {
+            // 160x90 pixels in 8-pixel tiles, 48 slices: 20 x 12 x 48 froxels.
+            EXPECT_EQ(g.value().volumes.mediaScatteringG.size(), 20u * 12u * 48u) << "render " << i;
+        }
+        images.push_back(g.value().image);
+    }
+    for (const Image& img : images) EXPECT_TRUE(img.pixels == images.front().pixels);
+}
+
 TEST_F(GpuTest, EmptySceneIsTheAmbientSky) {
     Scene s = baseScene();
     auto gpu = renderer->render(s, smallRequest());

@@ -101,11 +101,14 @@
 //   FRAME: rewritten every frame (contents discarded at its start);
 //   READBACK: copied to the host when render() is asked for the froxel volumes (FroxelVolumes order);
 //   TARGET: also a colour attachment of the geometry pass (it clears and writes it);
-//   OUTPUT: the composited image, read back every frame.
+//   OUTPUT: the composited image, read back every frame;
+//   MEDIA: voxelize's output, which only the frames that run voxelize use (gpu/frame_table.h
+//   VariantKey::inlineMedia): one texel otherwise, so a scene without vdb volumes does not hold 48 B
+//   per froxel it never writes (GpuRenderer::State::ensureFroxelImages).
 #define BRUME_FRAME_IMAGES(X) \
-    X(mediaScatteringG, 10, rgba32f, image3D, FRAME_READBACK) \
-    X(mediaExtinction, 11, rgba32f, image3D, FRAME_READBACK) \
-    X(mediaEmission, 12, rgba32f, image3D, FRAME_READBACK) \
+    X(mediaScatteringG, 10, rgba32f, image3D, FRAME_READBACK_MEDIA) \
+    X(mediaExtinction, 11, rgba32f, image3D, FRAME_READBACK_MEDIA) \
+    X(mediaEmission, 12, rgba32f, image3D, FRAME_READBACK_MEDIA) \
     X(sourceImage, 13, rgba32f, image3D, FRAME_READBACK) \
     X(integratedScattering, 14, rgba32f, image3D, FRAME_READBACK) \
     X(integratedTransmittance, 15, rgba16, image3D, FRAME_READBACK) \
