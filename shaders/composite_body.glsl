@@ -27,6 +27,8 @@ Accumulated integratedAt(int x, int y, int s) {
     return a;
 }
 
+#include "integrated_lookup.glsl"
+
 Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
     IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
     Accumulated byEntry[2];
@@ -37,14 +39,7 @@ Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
 #else
     const int entriesRead = 2;
 #endif
-    for (int e = 0; e < entriesRead; ++e) {
-        int s = k.entries[e];
-        Accumulated row0 = mixAccumulated(integratedAt(k.columns.x, k.columns.y, s),
-                                          integratedAt(k.columns.z, k.columns.y, s), k.weights.x);
-        Accumulated row1 = mixAccumulated(integratedAt(k.columns.x, k.columns.w, s),
-                                          integratedAt(k.columns.z, k.columns.w, s), k.weights.x);
-        byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
-    }
+    for (int e = 0; e < entriesRead; ++e) byEntry[e] = integratedEntry(k, k.entries[e]);
 #ifdef BRUME_COMPOSITE_ALL_FAR
     byEntry[1] = byEntry[0];
 #endif

@@ -26,18 +26,13 @@ Accumulated integratedAt(int x, int y, int s) {
     return a;
 }
 
+#include "integrated_lookup.glsl"
+
 // The transmittance of the integrated volume's lookup (shd::integratedLookup; composite.comp).
 vec3 integratedTransmittanceAt(vec2 pixel, float viewDepth) {
     IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
     Accumulated byEntry[2];
-    for (int e = 0; e < 2; ++e) {
-        int s = k.entries[e];
-        Accumulated row0 = mixAccumulated(integratedAt(k.columns.x, k.columns.y, s),
-                                          integratedAt(k.columns.z, k.columns.y, s), k.weights.x);
-        Accumulated row1 = mixAccumulated(integratedAt(k.columns.x, k.columns.w, s),
-                                          integratedAt(k.columns.z, k.columns.w, s), k.weights.x);
-        byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
-    }
+    for (int e = 0; e < 2; ++e) byEntry[e] = integratedEntry(k, k.entries[e]);
     Accumulated entries = mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
     return mixAccumulated(emptyAccumulated(), entries, k.entryWeight).transmittance;
 }
