@@ -3,8 +3,10 @@
 
     bench/compare_builds.py [options] NAME=BRUME[@SPV_DIR] NAME=BRUME[@SPV_DIR] ...
 
-Each round runs every build once, in the order given (A B C, A B C, ...), so that a busy or drifting
-machine affects all alike; the first build is the baseline. A build is a `brume` binary (copy
+Each round runs every build once, so that a busy or drifting machine affects all alike, in an order
+rotated by one build each round (A B C, B C A, C A B, ...): on the reference machine the run that
+opens a round was measured up to a third slower in some hours, which a fixed order charges to one
+build. Use a multiple of the build count as --rounds. The first build is the baseline. A build is a `brume` binary (copy
 build/app/brume aside before a change: its SPIR-V is embedded), optionally with a BRUME_SPV_DIR of
 shaders that replace the embedded ones (docs/performance.md, "How to measure"). Prints each round's
 wall medians, then per pass: the baseline's median over rounds, each other build's median, their
@@ -72,7 +74,7 @@ def main():
     runs = {name: [] for name in names}
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(a.rounds):
-            for name, binary, spv in builds:
+            for name, binary, spv in builds[r % len(builds):] + builds[:r % len(builds)]:
                 out = os.path.join(tmp, f"{name}_{r}.json")
                 cmd = [binary, "bench", a.scene, "--width", str(a.width), "--height", str(a.height), "--quality",
                        a.quality, "--frames", str(a.frames), "--warmup", "1", "--orbit", str(a.orbit), "--json", out]
