@@ -6,8 +6,8 @@
 Each round runs every build once, so that a busy or drifting machine affects all alike, in an order
 rotated by one build each round (A B C, B C A, C A B, ...): on the reference machine the run that
 opens a round was measured up to a third slower in some hours, which a fixed order charges to one
-build. Use a multiple of the build count as --rounds. The first build is the baseline. A build is a `brume` binary (copy
-build/app/brume aside before a change: its SPIR-V is embedded), optionally with a BRUME_SPV_DIR of
+build. Use a multiple of the build count as --rounds. The first build is the baseline. A build is a
+`brume` binary (copy build/app/brume aside before a change: its SPIR-V is embedded), optionally with a BRUME_SPV_DIR of
 shaders that replace the embedded ones (docs/performance.md, "How to measure"). Prints each round's
 wall medians, then per pass: the baseline's median over rounds, each other build's median, their
 ratio, and the ratio in every round (a ratio that swings across 1 from round to round is noise).

@@ -200,33 +200,28 @@ bool voxelizeDispatches(const VariantKey& variant, bool readBackVolumes) {
 // media: whether the MEDIA images (voxelize's output) get the grid's size; else one texel each. Only
 // they are made again when only that changes.
 Result<void> GpuRenderer::State::ensureFroxelImages(glm::ivec3 dims, bool media, bool& dirty) {
-    if (res.froxelDims == dims && res.mediaImages == media) return {};
+    const bool resized = res.froxelDims != dims;
+    if (!resized && res.mediaImages == media) return {};
     allocated = true;
-    if (res.froxelDims == dims) {
-        for (const ImageDecl& d : kImages) {
-            if (d.shape != ImageShape::image3D || !(d.flags & image_flags::MEDIA)) continue;
-            GpuImage& slot = res[d.id];
-            slot = GpuImage{};
-            Result<GpuImage> img = createImage(*device, extentOf(media ? dims : glm::ivec3(1)), true, vkFormat(d.format),
-                                               kVolumeUsage, d.name);
-            if (!img) return img.error();
-            slot = std::move(img.value());
-        }
-        res.mediaImages = media;
-        dirty = true;
-        return {};
-    }
+    dirty = true;
+    // Until every image is made: a failure half-way leaves a set the next call rebuilds whole.
     res.froxelDims = glm::ivec3(0);
     for (const ImageDecl& d : kImages) {
-        if (d.shape != ImageShape::image3D) continue;
+        const bool isMedia = (d.flags & image_flags::MEDIA) != 0;
+        // At the same size only the MEDIA images change.
+        if (d.shape != ImageShape::image3D || (!resized && !isMedia)) continue;
         GpuImage& slot = res[d.id];
         slot = GpuImage{};  // release before allocating: peak memory stays one set of volumes
-        const glm::ivec3 extent = media || !(d.flags & image_flags::MEDIA) ? dims : glm::ivec3(1);
+        const glm::ivec3 extent = isMedia && !media ? glm::ivec3(1) : dims;
         Result<GpuImage> img = createImage(*device, extentOf(extent), true, vkFormat(d.format), kVolumeUsage, d.name);
         if (!img) return img.error();
         slot = std::move(img.value());
     }
     res.mediaImages = media;
+    if (!resized) {
+        res.froxelDims = dims;
+        return {};
+    }
     for (const HistoryDecl& d : kHistory) {
         for (size_t k = 0; k < 2; ++k) {
             GpuImage& slot = res.history[static_cast<size_t>(d.id)][k];

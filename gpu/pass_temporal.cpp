@@ -78,15 +78,14 @@ void recordIntegrate(const PassContext& ctx) {
                               {r[ImageId::integratedTransmittance].image.get(), one}});
     }
     // Entries stored in every column beyond those the composite's lookups read (integrate.comp): all of
-    // them for the read-back volumes and the debug views, else the glow's (none without glow).
-    glm::ivec2 everywhere(1, 0);
+    // them for the read-back volumes and the debug views, else the span of the glows' (none: first >
+    // last, no entry).
+    glm::ivec2 everywhere(std::numeric_limits<int>::max(), -1);
     if (ctx.readBackVolumes || ctx.debugParams.view.x != shd::DEBUG_VIEW_FINAL) {
         everywhere = glm::ivec2(0, r.froxelDims.z - 1);
     } else if (ctx.glow) {
-        for (const shd::GlowParams& g : *ctx.glow) {
-            everywhere.x = everywhere.y < everywhere.x ? g.light.y : std::min(everywhere.x, g.light.y);
-            everywhere.y = std::max(everywhere.y, g.light.z);
-        }
+        for (const shd::GlowParams& g : *ctx.glow)
+            everywhere = glm::ivec2(std::min(everywhere.x, g.light.y), std::max(everywhere.y, g.light.z));
     }
     pushRegion(ctx, r.temporalRegion, everywhere.x, everywhere.y);
     dispatchPass(ctx);
