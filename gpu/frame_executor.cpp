@@ -627,6 +627,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;
             case Record::Integrate: recordIntegrate(ctx); break;
+            case Record::Light: recordLight(ctx); break;
             case Record::DebugView: recordDebugView(ctx); break;
             case Record::Glow: recordGlow(ctx); break;
         }

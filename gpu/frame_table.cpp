@@ -45,9 +45,12 @@ const std::array<PassDecl, 15> kPasses{{
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     // Without vdb volumes (_media) it computes the media itself (VariantKey::inlineMedia). S and sigma_t
     // go out in 6 words, sourceImage (S, sigma_t.r) and sourceExtinction (sigma_t.gb).
-    {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
+    // At rest from the third frame on it lights each column only down to its deepest stored integrated
+    // entry (the depth tiles; column_entries.glsl).
+    {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Light,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission},
+      B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
+      B::depthTiles},
      {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,

@@ -252,6 +252,7 @@ enum class Record : uint8_t {
     TemporalCopy,  // the history's output cleared where stale, the dispatch, then (in motion) the
                    // history's output copied over source and extinction (pass_temporal.cpp)
     Integrate,     // the integrated volumes cleared outside a partial temporal region, then the dispatch
+    Light,         // push the entries stored in every column (a frame skipping hidden froxels), dispatch
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)

@@ -44,6 +44,21 @@ void clearImages(VkCommandBuffer cmd, std::initializer_list<Clear> clears) {
 
 }  // namespace
 
+// Entries stored in every column beyond those the composite's lookups read (integrate.comp): all of
+// them for the read-back volumes and the debug views, else the span of the glows' (none: first >
+// last, no entry). A frame that skips hidden froxels lights and resolves each column down to these too
+// (column_entries.glsl).
+glm::ivec2 storedEverywhere(const PassContext& ctx) {
+    glm::ivec2 everywhere(std::numeric_limits<int>::max(), -1);
+    if (ctx.readBackVolumes || ctx.debugParams.view.x != shd::DEBUG_VIEW_FINAL) {
+        everywhere = glm::ivec2(0, ctx.res->froxelDims.z - 1);
+    } else if (ctx.glow) {
+        for (const shd::GlowParams& g : *ctx.glow)
+            everywhere = glm::ivec2(std::min(everywhere.x, g.light.y), std::max(everywhere.y, g.light.z));
+    }
+    return everywhere;
+}
+
 void recordTemporal(const PassContext& ctx) {
     const VkCommandBuffer cmd = ctx.cmd;
     const FrameResources& r = *ctx.res;
@@ -77,17 +92,14 @@ void recordIntegrate(const PassContext& ctx) {
         clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), VkClearColorValue{}},
                               {r[ImageId::integratedTransmittance].image.get(), one}});
     }
-    // Entries stored in every column beyond those the composite's lookups read (integrate.comp): all of
-    // them for the read-back volumes and the debug views, else the span of the glows' (none: first >
-    // last, no entry).
-    glm::ivec2 everywhere(std::numeric_limits<int>::max(), -1);
-    if (ctx.readBackVolumes || ctx.debugParams.view.x != shd::DEBUG_VIEW_FINAL) {
-        everywhere = glm::ivec2(0, r.froxelDims.z - 1);
-    } else if (ctx.glow) {
-        for (const shd::GlowParams& g : *ctx.glow)
-            everywhere = glm::ivec2(std::min(everywhere.x, g.light.y), std::max(everywhere.y, g.light.z));
-    }
+    const glm::ivec2 everywhere = storedEverywhere(ctx);
     pushRegion(ctx, r.temporalRegion, everywhere.x, everywhere.y);
+    dispatchPass(ctx);
+}
+
+void recordLight(const PassContext& ctx) {
+    const glm::ivec2 everywhere = storedEverywhere(ctx);
+    pushRegion(ctx, FroxelRegion{}, everywhere.x, everywhere.y);
     dispatchPass(ctx);
 }
 

@@ -38,7 +38,7 @@ struct PassContext {
 void dispatchPass(const PassContext& ctx);
 
 // Pushes region as the pass's shd::FroxelRegionParams, loW in lo.w (the shadow volume's light, the
-// integrate pass's first entry stored in every column), hiW in hi.w (the integrate pass's last one).
+// integrate and light passes' first entry stored in every column), hiW in hi.w (their last one).
 void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW = 0, int hiW = 0);
 
 // Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
@@ -89,6 +89,15 @@ void recordTemporal(const PassContext& ctx);
 // volumes cleared to what empty froxels integrate to (scattering 0, transmittance 1), then the
 // dispatch over the region's columns.
 void recordIntegrate(const PassContext& ctx);
+
+// The integrated entries stored in every column (pushed as lo.w .. hi.w to integrate and light): all
+// of them for the read-back volumes and the debug views, else the span of the glows' entries (empty:
+// first > last).
+glm::ivec2 storedEverywhere(const PassContext& ctx);
+
+// Light (Record::Light): storedEverywhere pushed (a frame that skips hidden froxels lights each column
+// down to its deepest stored entry: column_entries.glsl), then the dispatch over the media runs.
+void recordLight(const PassContext& ctx);
 
 // Debug view (Record::DebugView): the view and slice as push constants, then the dispatch.
 void recordDebugView(const PassContext& ctx);

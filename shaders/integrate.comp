@@ -22,39 +22,16 @@ layout(local_size_x = INTEGRATE_GROUP_X, local_size_y = INTEGRATE_GROUP_Y, local
 // volumes are read back or a debug view shows a slice (frame_executor.cpp recordIntegrate).
 layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
 
-// The entries of `column` that the composite's lookups can read (shd::integratedLookup): a pixel reads
-// the columns around its centre, so column c serves the pixels within a column of its own, those of
-// [(c - 0.5) T, (c + 1.5) T) for T pixels a column, and the last column the image's edge beyond; with
-// a column of margin, [(c - 1) T, (c + 2) T). Their depths are within the depth tiles' (depth_tiles.comp)
-// shallowest and deepest, whose entries integratedEntryRange gives. The entries no lookup reads are not
-// stored: at 1280x720 `high` most of a column lies in front of its surfaces or behind them, and a store
-// costs lavapipe a loop per word and lane (docs/performance.md, "keep").
-ivec2 columnEntryRange(ivec2 column) {
-    ivec2 size = frame.counts.xy;
-    int px = frame.froxelDims.w;
-    ivec2 lo = max((column - ivec2(1)) * px, ivec2(0));
-    ivec2 hi = min((column + ivec2(2)) * px - ivec2(1), size - ivec2(1));
-    if (column.x == frame.froxelDims.x - 1) hi.x = size.x - 1;
-    if (column.y == frame.froxelDims.y - 1) hi.y = size.y - 1;
-    ivec2 tiles = depthTileCount(size);
-    ivec2 t0 = lo / DISTANT_TILE_PX;
-    ivec2 t1 = hi / DISTANT_TILE_PX;
-    float deepest = 0.0f;
-    float shallowest = BRUME_HUGE;
-    for (int ty = t0.y; ty <= t1.y; ++ty)
-        for (int tx = t0.x; tx <= t1.x; ++tx) {
-            vec2 range = depthTileRange[depthTileIndex(tiles, ivec2(tx, ty))];
-            deepest = max(deepest, range.x);
-            shallowest = min(shallowest, range.y);
-        }
-    return integratedEntryRange(shallowest, deepest, frame);
-}
+#include "column_entries.glsl"
+#include "balanced_groups.glsl"
 
 // Whether entry s of a column whose lookups read `read` is stored.
 bool storedEntry(int s, ivec2 read) { return (s >= read.x && s <= read.y) || (s >= region.lo.w && s <= region.hi.w); }
 
 void main() {
-    ivec2 column = region.lo.xy + ivec2(gl_GlobalInvocationID.xy);
+    // Workgroups interleaved between lavapipe's threads (balanced_groups.glsl): where the frame skips
+    // hidden froxels, the sky's columns walk every slice and the ground's few.
+    ivec2 column = region.lo.xy + ivec2(balancedGlobalID().xy);
     if (any(greaterThanEqual(column, region.hi.xy))) return;
     vec2 pixel = (vec2(column) + vec2(0.5f)) * float(frame.froxelDims.w);
     Accumulated acc = emptyAccumulated();
@@ -63,7 +40,10 @@ void main() {
     float rayScale = length(viewRayFromPixel(pixel, frame));
     float zNear = sliceBoundaryDepth(region.lo.z, frame);
     ivec2 read = columnEntryRange(column);
-    for (int s = region.lo.z; s < region.hi.z; ++s) {
+    // At rest from the third frame on, the froxels behind every stored entry are neither resolved nor
+    // integrated (column_entries.glsl columnWalkEnd); the light pass did not light them either.
+    int end = columnWalkEnd(read, region.hi.w);
+    for (int s = region.lo.z; s < min(region.hi.z, end); ++s) {
         ivec3 id = ivec3(column, s);
         float zFar = sliceBoundaryDepth(s + 1, frame);
         float d = (zFar - zNear) * rayScale;
@@ -88,7 +68,7 @@ void main() {
             imageStore(integratedTransmittance, id, vec4(acc.transmittance, 0.0f));
         }
     }
-    for (int s = region.hi.z; s < frame.froxelDims.z; ++s) {
+    for (int s = region.hi.z; s < end; ++s) {
         ivec3 id = ivec3(column, s);
         if (storedEntry(s, read)) {
             imageStore(integratedScattering, id, vec4(acc.scattering, 0.0f));

@@ -40,6 +40,12 @@
 layout(local_size_x = LIGHT_EXACT_GROUP) in;
 #else
 layout(local_size_x = LIGHT_GROUP_X, local_size_y = LIGHT_GROUP_Y, local_size_z = 1) in;
+// lo.w .. hi.w: the integrated entries stored in every column, as integrate.comp's (the glow's): a
+// frame that skips hidden froxels lights each column down to its deepest stored entry only.
+layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
+#include "distant_table.h"
+#include "column_entries.glsl"
+#include "balanced_groups.glsl"
 #endif
 
 // The sun shadow map's visibility at p for the mapped sun (sun_shadow.glsl), looked up once per
@@ -287,11 +293,18 @@ void main() {
                      int(linear / plane));
     lightFroxel(id);
 #else
-    // The run's first froxel; the run is cut at the grid's end.
-    ivec3 first = ivec3(gl_GlobalInvocationID.xy, int(gl_GlobalInvocationID.z) * LIGHT_RUN) +
+    // The run's first froxel.
+    // Workgroups interleaved between lavapipe's threads (balanced_groups.glsl): the deep runs cost
+    // little where the frame skips hidden froxels.
+    uvec3 runID = balancedGlobalID();
+    ivec3 first = ivec3(runID.xy, int(runID.z) * LIGHT_RUN) +
                   ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
-    if (any(greaterThanEqual(first, frame.froxelDims.xyz))) return;
-    int last = min(first.z + LIGHT_RUN, frame.froxelDims.z) - 1;
+    // The run is cut at the grid's end, and at rest from the third frame on at the column's deepest
+    // stored integrated entry (column_entries.glsl): the froxels behind are hidden from every lookup.
+    int end = frame.froxelDims.z;
+    if (temporalSkipsHidden(frame.temporal)) end = columnWalkEnd(columnEntryRange(first.xy), region.hi.w);
+    if (any(greaterThanEqual(first, ivec3(frame.froxelDims.xy, end)))) return;
+    int last = min(first.z + LIGHT_RUN, end) - 1;
     uint lit = 0u;   // froxels of the run with sigma_t > 0
     uint run = 0u;   // bit k: froxel first + k along z needs light exact
     for (int z0 = first.z - first.z % LIGHT_BLOCK; z0 <= last; z0 += LIGHT_BLOCK) {

@@ -420,3 +420,86 @@ TEST(GpuTemporal, SurfacesKeptAtRestRenderAsRedrawnThroughEditsMovesAndResizes) 
         EXPECT_EQ(largest, 0.0f) << "step " << n << " (" << what << ")";
     }
 }
+
+// From the third frame of a rest on, the GPU lights and resolves only the froxels in front of each
+// column's deepest stored integrated entry (shaders/column_entries.glsl, GpuOptions::skipHiddenFroxels).
+// The image at rest must not change: each frame of a rest equals, pixel for pixel, the frame of a
+// renderer that computes every froxel (both with the integrated scattering poisoned where unstored).
+// Once the view moves, the skipped froxels' history (the rest's first two frames' values) is what the
+// reprojection reads where the motion uncovers them: those frames differ from the full renderer's a
+// little, and stay within the GPU-vs-CPU tolerance of the CPU froxel renderer, which computes every
+// froxel. Scenes: ground, sky and a glowing point light (temporalScene), the same with the camera
+// inside the light's glow, and with a wall between the camera and the light; `low` and `high`; an
+// odd size (partial last columns).
+TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
+    GpuOptions options;
+    options.validation = true;
+    options.poisonIntegrated = true;
+    auto skipping = GpuRenderer::create(options);
+    ASSERT_TRUE(skipping.ok()) << skipping.error().message;
+    options.skipHiddenFroxels = false;
+    auto full = GpuRenderer::create(options);
+    ASSERT_TRUE(full.ok()) << full.error().message;
+    Scene outside = temporalScene();
+    outside.froxels.tile_px.reset();  // the presets' tiles and slices
+    outside.froxels.slices.reset();
+    Scene inside = outside;
+    inside.lights[1].position = inside.camera.position + glm::vec3(0.05f, -0.05f, -0.1f);
+    // The glowing light 0.6 m behind a wall, its glow ball (~0.9 m at `high`) poking through: the glow's
+    // pixels on the wall read the resolved sigma_t at the light's froxel, behind the wall's depth
+    // tiles' entries; the push constants' everywhere-entries (the glow's) keep it resolved.
+    Scene walled = outside;
+    Geometry wall;
+    wall.type = GeometryType::Box;
+    wall.transform.translation = outside.lights[1].position + glm::vec3(0.0f, 0.0f, 0.6f);
+    wall.transform.scale = {3.0f, 3.0f, 0.1f};
+    walled.geometry.push_back(wall);
+    double worstMotion = 0.0, worstCpu = 0.0;
+    for (const Scene* base : {&outside, &inside, &walled})
+        for (Quality q : {Quality::Low, Quality::High}) {
+            const std::string what = std::string(toString(q)) + (base == &inside   ? ", camera in a glow"
+                                                                 : base == &walled ? ", light behind a wall"
+                                                                                   : "");
+            FroxelCpuRenderer cpu;
+            RenderRequest req;
+            req.width = 133;
+            req.height = 71;
+            req.quality = q;
+            req.threads = 2;
+            for (int n = 0; n < 9; ++n) {
+                // Frames 0-5 rest (0 and 1 compute every froxel, 2-5 skip), 6-8 orbit.
+                Scene s = *base;
+                s.camera = orbitCamera(base->camera, 2.0f * static_cast<float>(std::max(n - 5, 0)));
+                req.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
+                auto a = skipping.value()->render(s, req);
+                auto b = full.value()->render(s, req);
+                ASSERT_TRUE(a.ok()) << a.error().message;
+                ASSERT_TRUE(b.ok()) << b.error().message;
+                const Image& ai = a.value().image;
+                const Image& bi = b.value().image;
+                EXPECT_TRUE(brume::allFinite(ai)) << what << ", frame " << n;
+                if (n <= 5) {
+                    size_t differ = 0;
+                    for (size_t k = 0; k < bi.pixels.size(); ++k) differ += ai.pixels[k] != bi.pixels[k] ? 1 : 0;
+                    EXPECT_EQ(differ, 0u) << what << ", frame " << n << ": pixels that differ";
+                    // The light pass counts the froxels it lit: fewer once it skips the hidden ones.
+                    if (n >= 2) EXPECT_LT(a.value().litFroxels, b.value().litFroxels) << what << ", frame " << n;
+                    else EXPECT_EQ(a.value().litFroxels, b.value().litFroxels) << what << ", frame " << n;
+                } else {
+                    const double motion = relativeMeanAbsError(ai, bi);
+                    const double againstCpu = relativeMeanAbsError(ai, cpu.render(s, req).image);
+                    EXPECT_LT(motion, 1e-5) << what << ", frame " << n;
+                    EXPECT_LT(againstCpu, kTolerance) << what << ", frame " << n;
+                    worstMotion = std::max(worstMotion, motion);
+                    worstCpu = std::max(worstCpu, againstCpu);
+                }
+                if (n <= 5) cpu.render(s, req);  // the CPU's history follows the same frames
+            }
+        }
+    std::printf("[skip hidden] in motion after a rest: worst relative mean abs error %.2e against the full "
+                "renderer, %.2e against the CPU\n", worstMotion, worstCpu);
+    for (auto* r : {skipping.value().get(), full.value().get()}) {
+        const std::vector<std::string> messages = r->validationMessages();
+        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+    }
+}

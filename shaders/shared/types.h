@@ -121,7 +121,8 @@ struct FrameUniforms {
     int mediaOriginZ;
     vec4 temporal;        // temporal pass (temporal.h): x: this frame's history weight (0 = no
                           // history); y: 1 = the view rests (progressive mean, no clamp), 0 = it
-                          // moved or the scene time changed; zw unused
+                          // moved or the scene time changed; z: 1 = the froxels no lookup reads
+                          // are skipped (GPU only, at rest: temporalSkipsHidden); w unused
 };
 
 BRUME_NAMESPACE_END
