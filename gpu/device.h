@@ -46,9 +46,10 @@ struct GpuOptions {
     // scattering with NaN, so that a lookup of an entry the integrate pass did not store this frame
     // (it stores only those some pixel or the glow can read: shaders/integrate.comp) shows in the image.
     bool poisonIntegrated = false;
-    // false: every frame lights and resolves every froxel. true (the default): at rest, from the third
-    // frame on, the froxels behind every integrated entry a lookup reads are skipped; the image at
-    // rest is the same (shaders/column_entries.glsl), so false is for tests and measurements.
+    // false: every frame lights and resolves every froxel. true (the default): the froxels behind every
+    // integrated entry a lookup reads are skipped (shaders/column_entries.glsl). The image at rest is
+    // the same; in motion a froxel uncovered by the motion starts without history (docs/temporal.md,
+    // "Hidden froxels"). false is for tests and measurements.
     bool skipHiddenFroxels = true;
 };
 

@@ -373,6 +373,9 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
     const glm::ivec2 tiles = shd::depthTileCount(size);
     BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(glm::vec2), dirty));
+    // This frame's and the previous frame's walk end of each froxel column (column_entries.glsl).
+    BRUME_TRY(ensureBuffer(BufferId::columnEnds, 2 * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * sizeof(int),
+                           dirty));
     const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
     BRUME_TRY(ensureBuffer(BufferId::nearTiles, tileList, dirty));
     BRUME_TRY(ensureBuffer(BufferId::farTiles, tileList, dirty));
@@ -509,10 +512,10 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::LIGHT_GROUP_X), groups(r.mediaExtent.y, shd::LIGHT_GROUP_Y),
                           groups(r.mediaExtent.z, shd::LIGHT_RUN));
             break;
-        case Dispatch::RegionFroxels: {
+        case Dispatch::RegionRuns: {
             const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
-            vkCmdDispatch(ctx.cmd, groups(e.x, shd::FROXEL_GROUP_X), groups(e.y, shd::FROXEL_GROUP_Y),
-                          groups(e.z, shd::FROXEL_GROUP_Z));
+            vkCmdDispatch(ctx.cmd, groups(e.x, shd::TEMPORAL_GROUP_X), groups(e.y, shd::TEMPORAL_GROUP_Y),
+                          groups(e.z, shd::TEMPORAL_RUN));
             break;
         }
         case Dispatch::RegionColumns: {
@@ -627,7 +630,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;
             case Record::Integrate: recordIntegrate(ctx); break;
-            case Record::Light: recordLight(ctx); break;
+            case Record::ColumnEnds: recordColumnEnds(ctx); break;
             case Record::DebugView: recordDebugView(ctx); break;
             case Record::Glow: recordGlow(ctx); break;
         }

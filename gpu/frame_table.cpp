@@ -17,7 +17,7 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 15> kPasses{{
+const std::array<PassDecl, 16> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light pass and the geometry pass's surfaces read it.
     {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
@@ -35,6 +35,11 @@ const std::array<PassDecl, 15> kPasses{{
     // composite's tile lists read it (shared/distant_table.h).
     {"depth tiles", "depth_tiles", Variant::None, Dispatch::DepthTiles, When::SurfacesChanged, Record::Dispatch,
      {B::frame, I::sceneDepth}, {B::depthTiles}, true},
+    // Each froxel column's walk end (shaders/column_entries.glsl): the froxels behind its deepest stored
+    // integrated entry are neither lit nor resolved. Into this frame's half of columnEnds; the other
+    // half keeps the previous frame's, which the temporal and integrate passes read for the history.
+    {"column ends", "column_ends", Variant::None, Dispatch::Columns, When::Always, Record::ColumnEnds,
+     {B::frame, B::depthTiles}, {B::columnEnds}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
@@ -45,12 +50,11 @@ const std::array<PassDecl, 15> kPasses{{
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     // Without vdb volumes (_media) it computes the media itself (VariantKey::inlineMedia). S and sigma_t
     // go out in 6 words, sourceImage (S, sigma_t.r) and sourceExtinction (sigma_t.gb).
-    // At rest from the third frame on it lights each column only down to its deepest stored integrated
-    // entry (the depth tiles; column_entries.glsl).
-    {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Light,
+    // Each column only down to its walk end (columnEnds), in motion with the temporal pass's neighbours.
+    {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
-      B::depthTiles},
+      B::columnEnds},
      {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
@@ -61,9 +65,9 @@ const std::array<PassDecl, 15> kPasses{{
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
     // (core/media_region.h) into the history's output, which the later passes read. At rest it only
     // clears stale history: integrate_rest resolves each froxel itself.
-    {"temporal", "temporal", Variant::None, Dispatch::RegionFroxels, When::Always, Record::TemporalCopy,
+    {"temporal", "temporal", Variant::None, Dispatch::RegionRuns, When::Always, Record::TemporalCopy,
      {B::frame, B::previousFrame, I::sourceImage, I::sourceExtinction, historyIn(H::historySource),
-      historyIn(H::historyExtinction)},
+      historyIn(H::historyExtinction), B::columnEnds},
      {historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // Front to back along each froxel column (closed-form slabs), over the temporal region's columns.
     // At rest (_rest) it first resolves each froxel with its own history, writing the history's output
@@ -71,7 +75,7 @@ const std::array<PassDecl, 15> kPasses{{
     // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
     {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
      {B::frame, B::depthTiles, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
-      historyOut(H::historySource), historyOut(H::historyExtinction)},
+      historyOut(H::historySource), historyOut(H::historyExtinction), B::columnEnds},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);

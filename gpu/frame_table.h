@@ -189,7 +189,7 @@ enum class Dispatch : uint8_t {
     Froxels,      // one per froxel, FROXEL_GROUP_*
     MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), FROXEL_GROUP_*
     MediaRuns,    // one per run of LIGHT_RUN froxels along z of the media region, LIGHT_GROUP_* (bindings.h)
-    RegionFroxels,  // one per froxel of the temporal region (FrameResources::temporalRegion), FROXEL_GROUP_*
+    RegionRuns,     // one per run of TEMPORAL_RUN froxels along z of the temporal region, TEMPORAL_GROUP_* (bindings.h)
     RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
@@ -252,7 +252,7 @@ enum class Record : uint8_t {
     TemporalCopy,  // the history's output cleared where stale, the dispatch, then (in motion) the
                    // history's output copied over source and extinction (pass_temporal.cpp)
     Integrate,     // the integrated volumes cleared outside a partial temporal region, then the dispatch
-    Light,         // push the entries stored in every column (a frame skipping hidden froxels), dispatch
+    ColumnEnds,    // push the entries stored in every column (pass_temporal.cpp storedEverywhere), dispatch
     ClearMedia,    // clear the media and source images outside a partial media region, then dispatch (frame_executor.cpp)
     DebugView,     // push the debug parameters, then dispatch (pass_debug_view.cpp)
     Glow,          // per glowing light: push its rectangle, dispatch, barrier (pass_glow.cpp)
@@ -279,7 +279,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 15> kPasses;
+extern const std::array<PassDecl, 16> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -423,15 +423,12 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         applyVdbShadowSettings(frame, cs, request);
         setTemporalBlend(frame, s_->temporalState, t);
         s_->variant.temporalRest = shd::temporalAtRest(frame.temporal);
-        // From the third frame of a rest on, the light and integrate passes skip the froxels behind
-        // every integrated entry a lookup reads (shaders/column_entries.glsl): both history sides were
-        // then written whole at this view, and those froxels keep those values for the next motion's
-        // reprojection (docs/temporal.md, "Hidden froxels at rest"). Frames that read the volumes back or
-        // show a debug view compute them all.
-        frame.temporal.z = s_->skipHidden && frame.temporal.y != 0.0f && s_->temporalState.restFrames >= 2 &&
-                                   !readBackVolumes && request.debugView == shd::DEBUG_VIEW_FINAL
-                               ? 1.0f
-                               : 0.0f;
+        // The light, temporal and integrate passes skip the froxels behind every integrated entry a
+        // lookup reads (shaders/column_entries.glsl; docs/temporal.md, "Hidden froxels"); the column
+        // ends pass records each column's end in the half of columnEnds this frame writes (w), so that
+        // the next frame reads only the history this one wrote.
+        frame.temporal.z = s_->skipHidden ? 1.0f : 0.0f;
+        frame.temporal.w = static_cast<float>(t.writeIndex);
         // Temporal and integrate run over the media region and its neighbours; the history side written
         // now is cleared first if an older frame left values outside them (FrameResources).
         r.temporalRegion = temporalFroxelRegion(media, dims);

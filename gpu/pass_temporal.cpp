@@ -97,7 +97,7 @@ void recordIntegrate(const PassContext& ctx) {
     dispatchPass(ctx);
 }
 
-void recordLight(const PassContext& ctx) {
+void recordColumnEnds(const PassContext& ctx) {
     const glm::ivec2 everywhere = storedEverywhere(ctx);
     pushRegion(ctx, FroxelRegion{}, everywhere.x, everywhere.y);
     dispatchPass(ctx);

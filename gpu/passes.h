@@ -95,9 +95,9 @@ void recordIntegrate(const PassContext& ctx);
 // first > last).
 glm::ivec2 storedEverywhere(const PassContext& ctx);
 
-// Light (Record::Light): storedEverywhere pushed (a frame that skips hidden froxels lights each column
-// down to its deepest stored entry: column_entries.glsl), then the dispatch over the media runs.
-void recordLight(const PassContext& ctx);
+// Column ends (Record::ColumnEnds): storedEverywhere pushed, then the dispatch over the froxel columns
+// (each column's walk end: shaders/column_entries.glsl).
+void recordColumnEnds(const PassContext& ctx);
 
 // Debug view (Record::DebugView): the view and slice as push constants, then the dispatch.
 void recordDebugView(const PassContext& ctx);

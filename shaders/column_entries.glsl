@@ -1,8 +1,9 @@
-// Which entries of a froxel column some lookup reads, and how deep a frame must walk the column
-// for them: integrate.comp stores only those entries, and a frame that skips hidden froxels
-// (frame.temporal.z, shared/temporal.h temporalSkipsHidden) lights and resolves nothing deeper.
-// Reads the depth tiles (depth_tiles.comp) and the push constants' lo.w .. hi.w (the entries stored
-// in every column: the glow's, or all of them; frame_executor.cpp storedEverywhere).
+// Which entries of a froxel column some lookup reads, and how deep a frame walks the column for them:
+// integrate.comp stores only those entries, and the light, temporal and integrate passes compute no
+// froxel deeper (docs/temporal.md, "Hidden froxels"). columnEntryRange and columnWalkEnd read the
+// depth tiles (depth_tiles.comp) and the push constants' lo.w .. hi.w (the entries stored in every
+// column: the glow's, or all of them; pass_temporal.cpp storedEverywhere): the column ends pass and
+// integrate call them. The other passes read the column ends pass's result (columnEnd).
 
 // The entries of `column` that the composite's lookups can read (shd::integratedLookup): a pixel reads
 // the columns around its centre, so column c serves the pixels within a column of its own, those of
@@ -11,6 +12,8 @@
 // shallowest and deepest, whose entries integratedEntryRange gives. The entries no lookup reads are not
 // stored: at 1280x720 `high` most of a column lies in front of its surfaces or behind them, and a store
 // costs lavapipe a loop per word and lane (docs/performance.md, "keep").
+#include "distant_table.h"
+
 ivec2 columnEntryRange(ivec2 column) {
     ivec2 size = frame.counts.xy;
     int px = frame.froxelDims.w;
@@ -32,13 +35,22 @@ ivec2 columnEntryRange(ivec2 column) {
     return integratedEntryRange(shallowest, deepest, frame);
 }
 
-// The froxels of a column this frame computes, [0, end): all of them, or where the frame skips hidden
-// froxels (at rest, temporalSkipsHidden) those up to the deepest stored entry, `read` (columnEntryRange)
-// or the push constants' everywhere-entries `everywhereLast` (hi.w), whichever is deeper. Entry s
-// integrates froxels 0 .. s, so no stored entry needs a froxel past it; the froxels behind are never
-// lit or resolved at rest, and keep the values of the two full frames that began the rest
-// (docs/temporal.md, "Hidden froxels at rest").
+// The froxels of a column this frame computes, [0, end): where the frame skips hidden froxels
+// (temporalSkipsHidden) those up to the deepest stored entry, `read` (columnEntryRange) or the push
+// constants' everywhere-entries `everywhereLast` (hi.w), whichever is deeper; else all of them. Entry
+// s integrates froxels 0 .. s, so no stored entry needs a froxel past it. The read-back volumes and the
+// debug views store every entry, hence compute every froxel.
 int columnWalkEnd(ivec2 read, int everywhereLast) {
     int all = frame.froxelDims.z;
     return temporalSkipsHidden(frame.temporal) ? min(max(read.y, everywhereLast) + 1, all) : all;
 }
+
+// The walk ends as the column ends pass stored them: this frame's (half frame.temporal.w of columnEnd)
+// and the previous frame's (the other half), which says which froxels of the history the previous frame
+// wrote: the others hold older values, from another view, and are not read.
+int columnEndIndex(ivec2 column, int side) {
+    ivec3 d = frame.froxelDims.xyz;
+    return (side * d.y + column.y) * d.x + column.x;
+}
+int currentColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))]; }
+int previousColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, 1 - int(frame.temporal.w))]; }

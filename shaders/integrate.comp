@@ -40,9 +40,14 @@ void main() {
     float rayScale = length(viewRayFromPixel(pixel, frame));
     float zNear = sliceBoundaryDepth(region.lo.z, frame);
     ivec2 read = columnEntryRange(column);
-    // At rest from the third frame on, the froxels behind every stored entry are neither resolved nor
-    // integrated (column_entries.glsl columnWalkEnd); the light pass did not light them either.
+    // The froxels behind every stored entry are neither resolved nor integrated (column_entries.glsl
+    // columnWalkEnd: the column ends pass stored the same end); the light pass did not light them.
     int end = columnWalkEnd(read, region.hi.w);
+#ifdef BRUME_TEMPORAL_REST
+    // The history the previous frame wrote in this column: a froxel past its walk end holds an older
+    // frame's value, from another view, and is not blended (weight 0: this frame's sample alone).
+    int written = previousColumnEnd(column);
+#endif
     for (int s = region.lo.z; s < min(region.hi.z, end); ++s) {
         ivec3 id = ivec3(column, s);
         float zFar = sliceBoundaryDepth(s + 1, frame);
@@ -52,9 +57,10 @@ void main() {
         vec4 a = imageLoad(historySourceIn, id);
         vec4 b = imageLoad(historyExtinctionIn, id);
         vec4 c = imageLoad(sourceImage, id);
-        vec4 source = resolveTemporalAtRest(historySourceOf(c), historySourceOf(a), frame.temporal.x);
+        float weight = s < written ? frame.temporal.x : 0.0f;
+        vec4 source = resolveTemporalAtRest(historySourceOf(c), historySourceOf(a), weight);
         vec4 extinction = resolveTemporalAtRest(historyExtinctionOf(c, imageLoad(sourceExtinction, id)),
-                                                historyExtinctionOf(a, b), frame.temporal.x);
+                                                historyExtinctionOf(a, b), weight);
         imageStore(historySourceOut, id, historyTexelA(source, extinction));
         imageStore(historyExtinctionOut, id, historyTexelB(extinction));
         acc = accumulateSlab(acc, source.rgb, extinction.rgb, d);

@@ -40,10 +40,6 @@
 layout(local_size_x = LIGHT_EXACT_GROUP) in;
 #else
 layout(local_size_x = LIGHT_GROUP_X, local_size_y = LIGHT_GROUP_Y, local_size_z = 1) in;
-// lo.w .. hi.w: the integrated entries stored in every column, as integrate.comp's (the glow's): a
-// frame that skips hidden froxels lights each column down to its deepest stored entry only.
-layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
-#include "distant_table.h"
 #include "column_entries.glsl"
 #include "balanced_groups.glsl"
 #endif
@@ -283,6 +279,7 @@ uint lightBlock(ivec2 xy, int z0, int zLo, int zHi, inout uint lit) {
 }
 #endif
 
+
 void main() {
 #ifdef BRUME_LIGHT_EXACT
     uint slot = gl_GlobalInvocationID.x;
@@ -299,10 +296,9 @@ void main() {
     uvec3 runID = balancedGlobalID();
     ivec3 first = ivec3(runID.xy, int(runID.z) * LIGHT_RUN) +
                   ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
-    // The run is cut at the grid's end, and at rest from the third frame on at the column's deepest
-    // stored integrated entry (column_entries.glsl): the froxels behind are hidden from every lookup.
-    int end = frame.froxelDims.z;
-    if (temporalSkipsHidden(frame.temporal)) end = columnWalkEnd(columnEntryRange(first.xy), region.hi.w);
+    // The run is cut at the column's walk end (column_entries.glsl): the froxels behind are hidden
+    // from every lookup, and the temporal pass's neighbourhood leaves them out.
+    int end = currentColumnEnd(first.xy);
     if (any(greaterThanEqual(first, ivec3(frame.froxelDims.xy, end)))) return;
     int last = min(first.z + LIGHT_RUN, end) - 1;
     uint lit = 0u;   // froxels of the run with sigma_t > 0

@@ -789,7 +789,7 @@ TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
     ASSERT_TRUE(renderer->render(s, smallRequest()).ok());  // warm-up: first dispatches compile shaders
     auto gpu = renderer->render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
-    const std::vector<std::string> expected{"shadow volume", "geometry",    "depth tiles", "voxelize", "light",
+    const std::vector<std::string> expected{"shadow volume", "geometry",    "depth tiles", "column ends", "voxelize", "light",
                                             "light exact",   "temporal",    "integrate",   "distant fog",
                                             "tile lists",    "composite",   "composite far", "composite all far",
                                             "glow",          "readback"};

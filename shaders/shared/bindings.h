@@ -35,6 +35,13 @@ BRUME_CONST int LIGHT_RUN = 32;
 BRUME_CONST int LIGHT_BLOCK = 4;
 BRUME_CONST int LIGHT_GROUP_X = 8;
 BRUME_CONST int LIGHT_GROUP_Y = 8;
+// The temporal pass in motion: one invocation per run of TEMPORAL_RUN froxels along z of the temporal
+// region, TEMPORAL_GROUP_X x TEMPORAL_GROUP_Y runs per workgroup. Its loop ends at the column's walk
+// end (shaders/column_entries.glsl): lavapipe leaves a loop once no lane of its 8 still runs it, where
+// an early return costs the whole body under a mask.
+BRUME_CONST int TEMPORAL_RUN = 16;
+BRUME_CONST int TEMPORAL_GROUP_X = 8;
+BRUME_CONST int TEMPORAL_GROUP_Y = 8;
 
 // The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis
 // (core/media_region.h temporalFroxelRegion; w unused). The rest of the grid is known without them:

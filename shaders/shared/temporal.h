@@ -184,7 +184,7 @@ BRUME_FUNC vec4 resolveTemporalAtRest(vec4 current, vec4 history, float weight) 
 BRUME_FUNC bool temporalAtRest(vec4 temporal) { return temporal.y != 0.0f || temporal.x <= 0.0f; }
 
 // Whether a frame lights and resolves only the froxels some lookup reads (frame.temporal.z, GPU only:
-// the host sets it at rest from the third frame of the rest on; shaders/column_entries.glsl).
+// GpuOptions::skipHiddenFroxels; shaders/column_entries.glsl).
 BRUME_FUNC bool temporalSkipsHidden(vec4 temporal) { return temporal.z != 0.0f; }
 
 BRUME_NAMESPACE_END

@@ -121,8 +121,9 @@ struct FrameUniforms {
     int mediaOriginZ;
     vec4 temporal;        // temporal pass (temporal.h): x: this frame's history weight (0 = no
                           // history); y: 1 = the view rests (progressive mean, no clamp), 0 = it
-                          // moved or the scene time changed; z: 1 = the froxels no lookup reads
-                          // are skipped (GPU only, at rest: temporalSkipsHidden); w unused
+                          // moved or the scene time changed; GPU only (0 on the CPU): z: 1 = the
+                          // froxels no lookup reads are skipped (temporalSkipsHidden); w: the
+                          // history side this frame writes, 0 or 1 (its half of columnEnds)
 };
 
 BRUME_NAMESPACE_END
