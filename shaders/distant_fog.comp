@@ -13,6 +13,7 @@
 #include "distant_table.h"
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
+#include "balanced_groups.glsl"
 
 // Volume i's density length over the piece [s0, s1] (shared/distant.h). With the scene's volume list
 // specialized (SPEC_VOLUME_COUNT >= 0; this pass gets the scene's whole list, none culled) the sums
@@ -99,7 +100,9 @@ void main() {
     // SPEC_DISTANT_FOG 0: no height or depth fog past the froxel far; nothing to tabulate.
     if (SPEC_DISTANT_FOG == 0) return;
     ivec2 corners = distantTableCorners(frame.counts.xy);
-    ivec2 c = ivec2(gl_GlobalInvocationID.xy);
+    // Workgroups interleaved between lavapipe's threads (balanced_groups.glsl): the sky's corners walk
+    // every entry of the table, the ground's those up to their pixels' depths.
+    ivec2 c = ivec2(balancedGlobalID().xy);
     if (any(greaterThanEqual(c, corners))) return;
     int n = distantTableEntries(frame);
     int needed = distantTableEntriesRead(c, n);
