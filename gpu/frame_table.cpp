@@ -50,7 +50,7 @@ const std::array<PassDecl, 16> kPasses{{
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
     // Without vdb volumes (_media) it computes the media itself (VariantKey::inlineMedia). S and sigma_t
     // go out in 6 words, sourceImage (S, sigma_t.r) and sourceExtinction (sigma_t.gb).
-    // Each column only down to its walk end (columnEnds), in motion with the temporal pass's neighbours.
+    // Each column only down to its walk end (columnEnds): the froxels behind are never read.
     {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,

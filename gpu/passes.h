@@ -38,7 +38,7 @@ struct PassContext {
 void dispatchPass(const PassContext& ctx);
 
 // Pushes region as the pass's shd::FroxelRegionParams, loW in lo.w (the shadow volume's light, the
-// integrate and light passes' first entry stored in every column), hiW in hi.w (their last one).
+// integrate and column ends passes' first entry stored in every column), hiW in hi.w (their last one).
 void pushRegion(const PassContext& ctx, const FroxelRegion& region, int loW = 0, int hiW = 0);
 
 // Shadow volume (Record::ShadowCells): its cell region pushed, then the dispatch over its cells.
@@ -90,7 +90,7 @@ void recordTemporal(const PassContext& ctx);
 // dispatch over the region's columns.
 void recordIntegrate(const PassContext& ctx);
 
-// The integrated entries stored in every column (pushed as lo.w .. hi.w to integrate and light): all
+// The integrated entries stored in every column (pushed as lo.w .. hi.w to integrate and column ends): all
 // of them for the read-back volumes and the debug views, else the span of the glows' entries (empty:
 // first > last).
 glm::ivec2 storedEverywhere(const PassContext& ctx);

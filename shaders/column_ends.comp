@@ -4,7 +4,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
-#include "distant_table.h"
 
 layout(local_size_x = INTEGRATE_GROUP_X, local_size_y = INTEGRATE_GROUP_Y, local_size_z = 1) in;
 // lo.w .. hi.w: the entries stored in every column (pass_temporal.cpp storedEverywhere).
