@@ -421,6 +421,36 @@ TEST(GpuTemporal, SurfacesKeptAtRestRenderAsRedrawnThroughEditsMovesAndResizes) 
     }
 }
 
+namespace {
+
+// A renderer that skips the hidden froxels (the default) and one that computes them all
+// (GpuOptions::skipHiddenFroxels = false), both validated; the integrated scattering poisoned where
+// unstored when asked (GpuOptions::poisonIntegrated). Stops the test on an error (HasFatalFailure()).
+struct SkippingAndFull {
+    std::unique_ptr<GpuRenderer> skipping, full;
+
+    void create(bool poisonIntegrated) {
+        GpuOptions options;
+        options.validation = true;
+        options.poisonIntegrated = poisonIntegrated;
+        auto a = GpuRenderer::create(options);
+        ASSERT_TRUE(a.ok()) << a.error().message;
+        skipping = std::move(a.value());
+        options.skipHiddenFroxels = false;
+        auto b = GpuRenderer::create(options);
+        ASSERT_TRUE(b.ok()) << b.error().message;
+        full = std::move(b.value());
+    }
+    void expectNoValidationMessages() const {
+        for (const GpuRenderer* r : {skipping.get(), full.get()}) {
+            const std::vector<std::string> messages = r->validationMessages();
+            EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
+        }
+    }
+};
+
+}  // namespace
+
 // The GPU lights and resolves only the froxels in front of each column's deepest stored integrated
 // entry (shaders/column_entries.glsl, GpuOptions::skipHiddenFroxels). The image at rest must not
 // change: each frame of a rest equals, pixel for pixel, the frame of a renderer that computes every
@@ -431,14 +461,9 @@ TEST(GpuTemporal, SurfacesKeptAtRestRenderAsRedrawnThroughEditsMovesAndResizes) 
 // inside the light's glow, and with a wall between the camera and the light; `low` and `high`; an
 // odd size (partial last columns).
 TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
-    GpuOptions options;
-    options.validation = true;
-    options.poisonIntegrated = true;
-    auto skipping = GpuRenderer::create(options);
-    ASSERT_TRUE(skipping.ok()) << skipping.error().message;
-    options.skipHiddenFroxels = false;
-    auto full = GpuRenderer::create(options);
-    ASSERT_TRUE(full.ok()) << full.error().message;
+    SkippingAndFull renderers;
+    renderers.create(/*poisonIntegrated=*/true);
+    if (HasFatalFailure()) return;
     Scene outside = temporalScene();
     outside.froxels.tile_px.reset();  // the presets' tiles and slices
     outside.froxels.slices.reset();
@@ -470,8 +495,8 @@ TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
                 Scene s = *base;
                 s.camera = orbitCamera(base->camera, 2.0f * static_cast<float>(std::max(n - 5, 0)));
                 req.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
-                auto a = skipping.value()->render(s, req);
-                auto b = full.value()->render(s, req);
+                auto a = renderers.skipping->render(s, req);
+                auto b = renderers.full->render(s, req);
                 ASSERT_TRUE(a.ok()) << a.error().message;
                 ASSERT_TRUE(b.ok()) << b.error().message;
                 const Image& ai = a.value().image;
@@ -496,10 +521,7 @@ TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
         }
     std::printf("[skip hidden] in motion after a rest: worst relative mean abs error %.2e against the full "
                 "renderer, %.2e against the CPU\n", worstMotion, worstCpu);
-    for (auto* r : {skipping.value().get(), full.value().get()}) {
-        const std::vector<std::string> messages = r->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
+    renderers.expectNoValidationMessages();
 }
 
 // A frame that computes every froxel (the read-back volumes, a debug view) after frames that skipped
@@ -510,13 +532,9 @@ TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
 // the samples' spread (the skipped froxels take this frame's sample alone, the full renderer's their
 // mean), and far from the ghost of the first view.
 TEST(GpuTemporal, AFrameThatComputesEveryFroxelReadsNoHistoryFromAnotherView) {
-    GpuOptions options;
-    options.validation = true;
-    auto skipping = GpuRenderer::create(options);
-    ASSERT_TRUE(skipping.ok()) << skipping.error().message;
-    options.skipHiddenFroxels = false;
-    auto full = GpuRenderer::create(options);
-    ASSERT_TRUE(full.ok()) << full.error().message;
+    SkippingAndFull renderers;
+    renderers.create(/*poisonIntegrated=*/false);
+    if (HasFatalFailure()) return;
     Scene base = temporalScene();
     RenderRequest req;
     req.width = 96;
@@ -528,8 +546,8 @@ TEST(GpuTemporal, AFrameThatComputesEveryFroxelReadsNoHistoryFromAnotherView) {
         // Frames 0-2 rest, 3-5 orbit 12 degrees a frame, 6-9 rest; frame 9 reads the volumes back.
         s.camera = orbitCamera(base.camera, 12.0f * static_cast<float>(std::clamp(n - 2, 0, 3)));
         req.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
-        auto ra = skipping.value()->render(s, req, n == 9);
-        auto rb = full.value()->render(s, req, n == 9);
+        auto ra = renderers.skipping->render(s, req, n == 9);
+        auto rb = renderers.full->render(s, req, n == 9);
         ASSERT_TRUE(ra.ok()) << ra.error().message;
         ASSERT_TRUE(rb.ok()) << rb.error().message;
         a = std::move(ra.value());
@@ -539,8 +557,5 @@ TEST(GpuTemporal, AFrameThatComputesEveryFroxelReadsNoHistoryFromAnotherView) {
     std::printf("[skip hidden] read-back after skipping frames: resolved S %.2e from the full renderer's\n", source);
     EXPECT_LT(source, 2e-3);
     EXPECT_TRUE(brume::allFinite(a.image));
-    for (auto* r : {skipping.value().get(), full.value().get()}) {
-        const std::vector<std::string> messages = r->validationMessages();
-        EXPECT_TRUE(messages.empty()) << messages.size() << " validation messages, first: " << messages.front();
-    }
+    renderers.expectNoValidationMessages();
 }
