@@ -373,9 +373,10 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
     const glm::ivec2 tiles = shd::depthTileCount(size);
     BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(glm::vec2), dirty));
-    // This frame's and the previous frame's walk end of each froxel column (column_entries.glsl).
-    BRUME_TRY(ensureBuffer(BufferId::columnEnds, 2 * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * sizeof(int),
-                           dirty));
+    // This frame's and the previous frame's read entries and walk end of each froxel column
+    // (column_entries.glsl).
+    BRUME_TRY(ensureBuffer(BufferId::columnEnds,
+                           2 * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * sizeof(glm::ivec4), dirty));
     const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
     BRUME_TRY(ensureBuffer(BufferId::nearTiles, tileList, dirty));
     BRUME_TRY(ensureBuffer(BufferId::farTiles, tileList, dirty));
@@ -476,10 +477,6 @@ void dispatchPass(const PassContext& ctx) {
     bindComputePass(ctx.cmd, *ctx.pipeline, *ctx.bindings);
     const FrameResources& r = *ctx.res;
     switch (ctx.pass->dispatch) {
-        case Dispatch::Froxels:
-            vkCmdDispatch(ctx.cmd, groups(r.froxelDims.x, shd::FROXEL_GROUP_X), groups(r.froxelDims.y, shd::FROXEL_GROUP_Y),
-                          groups(r.froxelDims.z, shd::FROXEL_GROUP_Z));
-            break;
         case Dispatch::Columns:
             vkCmdDispatch(ctx.cmd, groups(r.froxelDims.x, shd::INTEGRATE_GROUP_X),
                           groups(r.froxelDims.y, shd::INTEGRATE_GROUP_Y), 1);

@@ -35,9 +35,10 @@ const std::array<PassDecl, 16> kPasses{{
     // composite's tile lists read it (shared/distant_table.h).
     {"depth tiles", "depth_tiles", Variant::None, Dispatch::DepthTiles, When::SurfacesChanged, Record::Dispatch,
      {B::frame, I::sceneDepth}, {B::depthTiles}, true},
-    // Each froxel column's walk end (shaders/column_entries.glsl): the froxels behind its deepest stored
-    // integrated entry are neither lit nor resolved. Into this frame's half of columnEnds; the other
-    // half keeps the previous frame's, which the temporal and integrate passes read for the history.
+    // Each froxel column's entries that lookups read and its walk end (shaders/column_entries.glsl): the
+    // froxels behind its deepest stored integrated entry are neither lit nor resolved. Into this frame's
+    // half of columnEnds; the other half keeps the previous frame's, which the temporal and integrate
+    // passes read for the history.
     {"column ends", "column_ends", Variant::None, Dispatch::Columns, When::Always, Record::ColumnEnds,
      {B::frame, B::depthTiles}, {B::columnEnds}, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
@@ -74,8 +75,8 @@ const std::array<PassDecl, 16> kPasses{{
     // as the temporal pass would have. The resolved S and sigma_t are read from the history's output
     // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
     {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
-     {B::frame, B::depthTiles, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
-      historyOut(H::historySource), historyOut(H::historyExtinction), B::columnEnds},
+     {B::frame, B::columnEnds, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
+      historyOut(H::historySource), historyOut(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);

@@ -186,7 +186,6 @@ struct ResList {
 
 // How many invocations a compute pass runs (workgroup sizes: shaders/shared/types.h).
 enum class Dispatch : uint8_t {
-    Froxels,      // one per froxel, FROXEL_GROUP_*
     MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), FROXEL_GROUP_*
     MediaRuns,    // one per run of LIGHT_RUN froxels along z of the media region, LIGHT_GROUP_* (bindings.h)
     RegionRuns,     // one per run of TEMPORAL_RUN froxels along z of the temporal region, TEMPORAL_GROUP_* (bindings.h)

@@ -1,6 +1,7 @@
-// The column ends pass, after the depth tiles: each froxel column's walk end this frame (column_entries.glsl
-// columnWalkEnd), into this frame's half of columnEnds, which the light, temporal and integrate passes
-// read; the other half keeps the previous frame's, which says which froxels of the history it wrote.
+// The column ends pass, after the depth tiles: each froxel column's entries that lookups read and its
+// walk end this frame (column_entries.glsl columnEntryRange, columnWalkEnd), into this frame's half of
+// columnEnds, which the light, temporal and integrate passes read; the other half keeps the previous
+// frame's, which says which froxels of the history it wrote.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "resources.glsl"
@@ -14,5 +15,6 @@ layout(push_constant) uniform RegionBlock { FroxelRegionParams region; };
 void main() {
     ivec2 column = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(column, frame.froxelDims.xy))) return;
-    columnEnd[columnEndIndex(column, int(frame.temporal.w))] = columnWalkEnd(columnEntryRange(column), region.hi.w);
+    ivec2 read = columnEntryRange(column);
+    columnEnd[columnEndIndex(column, int(frame.temporal.w))] = ivec4(read, columnWalkEnd(read, region.hi.w), 0);
 }

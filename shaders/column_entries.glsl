@@ -2,8 +2,8 @@
 // integrate.comp stores only those entries, and the light, temporal and integrate passes compute no
 // froxel deeper (docs/temporal.md, "Hidden froxels"). columnEntryRange and columnWalkEnd read the
 // depth tiles (depth_tiles.comp) and the push constants' lo.w .. hi.w (the entries stored in every
-// column: the glow's, or all of them; pass_temporal.cpp storedEverywhere): the column ends pass and
-// integrate call them. The other passes read the column ends pass's result (columnEnd).
+// column: the glow's, or all of them; pass_temporal.cpp storedEverywhere): the column ends pass calls
+// them once per column, and the other passes read its result (columnEnd).
 
 // The entries of `column` that the composite's lookups can read (shd::integratedLookup): a pixel reads
 // the columns around its centre, so column c serves the pixels within a column of its own, those of
@@ -45,12 +45,14 @@ int columnWalkEnd(ivec2 read, int everywhereLast) {
     return temporalSkipsHidden(frame.temporal) ? min(max(read.y, everywhereLast) + 1, all) : all;
 }
 
-// The walk ends as the column ends pass stored them: this frame's (half frame.temporal.w of columnEnd)
-// and the previous frame's (the other half), which says which froxels of the history the previous frame
-// wrote: the others hold older values, from another view, and are not read.
+// What the column ends pass stored (xy: columnEntryRange, z: columnWalkEnd): this frame's (half
+// frame.temporal.w of columnEnd) and the previous frame's walk end (the other half), which says which
+// froxels of the history the previous frame wrote: the others hold older values, from another view,
+// and are not read.
 int columnEndIndex(ivec2 column, int side) {
     ivec3 d = frame.froxelDims.xyz;
     return (side * d.y + column.y) * d.x + column.x;
 }
-int currentColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))]; }
-int previousColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, 1 - int(frame.temporal.w))]; }
+ivec2 currentColumnEntries(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))].xy; }
+int currentColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))].z; }
+int previousColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, 1 - int(frame.temporal.w))].z; }

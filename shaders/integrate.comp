@@ -39,10 +39,11 @@ void main() {
     // lavapipe): slice s's far boundary is slice s + 1's near one.
     float rayScale = length(viewRayFromPixel(pixel, frame));
     float zNear = sliceBoundaryDepth(region.lo.z, frame);
-    ivec2 read = columnEntryRange(column);
-    // The froxels behind every stored entry are neither resolved nor integrated (column_entries.glsl
-    // columnWalkEnd: the column ends pass stored the same end); the light pass did not light them.
-    int end = columnWalkEnd(read, region.hi.w);
+    // The entries the column's lookups read, and its walk end, as the column ends pass stored them
+    // (column_entries.glsl): the froxels behind every stored entry are neither resolved nor integrated;
+    // the light pass did not light them.
+    ivec2 read = currentColumnEntries(column);
+    int end = currentColumnEnd(column);
 #ifdef BRUME_TEMPORAL_REST
     // The history the previous frame wrote in this column: a froxel past its walk end holds an older
     // frame's value, from another view, and is not blended (weight 0: this frame's sample alone).

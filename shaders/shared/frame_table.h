@@ -37,7 +37,7 @@
     X(nearTiles, 32, STORAGE_INDIRECT, std430, buffer, NearTileBlock, ExactListHeader nearTileList; uint nearTileIndex[];) \
     X(farTiles, 33, STORAGE_INDIRECT, std430, buffer, FarTileBlock, ExactListHeader farTileList; uint farTileIndex[];) \
     X(allFarTiles, 35, STORAGE_INDIRECT, std430, buffer, AllFarTileBlock, ExactListHeader allFarTileList; uint allFarTileIndex[];) \
-    X(columnEnds, 37, STORAGE_GPU, std430, buffer, ColumnEndBlock, int columnEnd[];)
+    X(columnEnds, 37, STORAGE_GPU, std430, buffer, ColumnEndBlock, ivec4 columnEnd[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -62,9 +62,10 @@
 //   depthTiles          vec2[]: the deepest (x) and shallowest (y) view depth of each 8x8 pixel tile
 //                       (distant_table.h depthTileIndex), written by the depth tiles pass when the
 //                       scene has distant fog, read by the distant fog pass (x) and the tile lists pass
-//   columnEnds          int[2 x columns]: the froxels each froxel column computes, [0, end), this frame's
-//                       (half frame.temporal.w) and the previous frame's (the other half), written by
-//                       the column ends pass (shaders/column_entries.glsl)
+//   columnEnds          ivec4[2 x columns]: per froxel column, the integrated entries its pixels' lookups
+//                       read (xy, inclusive) and its walk end (z: the froxels it computes are [0, z)),
+//                       this frame's (half frame.temporal.w) and the previous frame's (the other half),
+//                       written by the column ends pass (shaders/column_entries.glsl)
 //   nearTiles, farTiles, allFarTiles
 //                       ExactListHeader (the indirect dispatch: one workgroup per tile), then uint[]:
 //                       the tiles (depthTileIndex) whose pixels all lie within the froxel far, those
