@@ -443,8 +443,9 @@ void recordShadowCells(const PassContext& ctx) {
     for (const FrameResources::ShadowLayer& layer : ctx.res->shadowLayers) {
         const glm::ivec3 e = layer.cells.hi - layer.cells.lo;
         pushRegion(ctx, layer.cells, layer.light);
+        // One invocation per run of SHADOW_RUN cells along z (shaders/shadow_cells.glsl).
         vkCmdDispatch(ctx.cmd, groups(e.x, shd::FROXEL_GROUP_X), groups(e.y, shd::FROXEL_GROUP_Y),
-                      groups(e.z, shd::FROXEL_GROUP_Z));
+                      groups(groups(e.z, shd::SHADOW_RUN), shd::FROXEL_GROUP_Z));
     }
 }
 
@@ -583,6 +584,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
     for (const PassDecl& p : kPasses) {
         if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) continue;
         if (p.when == When::SurfacesChanged && reuseSurfaces) continue;
+        if ((p.when == When::VdbScene && !variant.vdb) || (p.when == When::NoVdbScene && variant.vdb)) continue;
         PassContext ctx;
         ctx.cmd = cmd;
         ctx.pass = &p;

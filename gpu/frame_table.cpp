@@ -17,11 +17,12 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 16> kPasses{{
+const std::array<PassDecl, 17> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
-    // light pass and the geometry pass's surfaces read it.
-    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::Always, Record::ShadowCells,
-     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids},
+    // light passes read it, and with vdb grids the geometry pass's surfaces its vdb layers: in scenes
+    // with vdb grids it runs here, before them (the entry after the column ends is left out).
+    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::VdbScene, Record::ShadowCells,
+     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids, B::columnEnds},
      {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
@@ -41,6 +42,11 @@ const std::array<PassDecl, 16> kPasses{{
     // passes read for the history.
     {"column ends", "column_ends", Variant::None, Dispatch::Columns, When::Always, Record::ColumnEnds,
      {B::frame, B::depthTiles}, {B::columnEnds}, true},
+    // The shadow volume in scenes without vdb grids (the surfaces read none of it): after the column
+    // ends, each cell column only down to the deepest cell this frame's froxels read (shadow_volume.comp).
+    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::NoVdbScene, Record::ShadowCells,
+     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids, B::columnEnds},
+     {B::shadowTransmittance}, true, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.

@@ -242,7 +242,10 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
 // SurfacesChanged: skipped when the GPU renderer keeps the previous frame's output of the pass
 // (RenderRequest::reuseSurfaces; gpu_renderer.cpp surfaceInputs): the pass reads nothing that
 // changed since, and its outputs (scene colour and depth, the distant fog table) outlive frames.
-enum class When : uint8_t { Always, DebugView, SurfacesChanged };
+// VdbScene / NoVdbScene: the shadow volume pass's two places in the frame. With vdb grids (VariantKey::
+// vdb) it runs first, since the geometry pass's surfaces read its vdb layers; without, after the column
+// ends pass, so that it computes only the cells this frame's froxels read (shadow_volume.comp).
+enum class When : uint8_t { Always, DebugView, SurfacesChanged, VdbScene, NoVdbScene };
 
 // Pass-specific recording beyond bind + dispatch (pass_*.cpp).
 enum class Record : uint8_t {
@@ -278,7 +281,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 16> kPasses;
+extern const std::array<PassDecl, 17> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -56,3 +56,18 @@ int columnEndIndex(ivec2 column, int side) {
 ivec2 currentColumnEntries(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))].xy; }
 int currentColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))].z; }
 int previousColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, 1 - int(frame.temporal.w))].z; }
+
+// How many cells along z of the fog transmittance volume's cell column c this frame's froxels read
+// (the shadow volume pass computes no deeper one). A froxel reads the cells around it on each axis,
+// floor(x / r) and the next (shared/shadow_volume.h shadowLookup), so cell column c serves the froxel
+// columns [(c - 1) r, (c + 1) r), and cell z the froxels from (z - 1) r on: with `deepest` the largest
+// walk end of those columns, the cells [0, (deepest - 1) / r + 2). When the frame computes every froxel
+// (walk end = all slices) that is every cell of the column.
+int shadowCellEnd(ivec2 c, int r, int cells) {
+    ivec2 lo = max((c - ivec2(1)) * r, ivec2(0));
+    ivec2 hi = min((c + ivec2(1)) * r, frame.froxelDims.xy);
+    int deepest = 0;
+    for (int y = lo.y; y < hi.y; ++y)
+        for (int x = lo.x; x < hi.x; ++x) deepest = max(deepest, currentColumnEnd(ivec2(x, y)));
+    return deepest > 0 ? min((deepest - 1) / r + 2, cells) : 0;
+}

@@ -789,10 +789,11 @@ TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
     ASSERT_TRUE(renderer->render(s, smallRequest()).ok());  // warm-up: first dispatches compile shaders
     auto gpu = renderer->render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
-    const std::vector<std::string> expected{"shadow volume", "geometry",    "depth tiles", "column ends", "voxelize", "light",
-                                            "light exact",   "temporal",    "integrate",   "distant fog",
-                                            "tile lists",    "composite",   "composite far", "composite all far",
-                                            "glow",          "readback"};
+    // Without vdb grids the shadow volume runs after the column ends (frame_table.cpp).
+    const std::vector<std::string> expected{"geometry",    "depth tiles", "column ends",   "shadow volume",     "voxelize",
+                                            "light",       "light exact", "temporal",      "integrate",         "distant fog",
+                                            "tile lists",  "composite",   "composite far", "composite all far", "glow",
+                                            "readback"};
     ASSERT_EQ(gpu.value().passes.size(), expected.size());
     double sum = 0.0;
     for (size_t i = 0; i < expected.size(); ++i) {

@@ -424,18 +424,23 @@ TEST(GpuTemporal, SurfacesKeptAtRestRenderAsRedrawnThroughEditsMovesAndResizes) 
 namespace {
 
 // A renderer that skips the hidden froxels (the default) and one that computes them all
-// (GpuOptions::skipHiddenFroxels = false), both validated; the integrated scattering poisoned where
-// unstored when asked (GpuOptions::poisonIntegrated). Stops the test on an error (HasFatalFailure()).
+// (GpuOptions::skipHiddenFroxels = false), both validated; when asked, the integrated scattering
+// poisoned where unstored (GpuOptions::poisonIntegrated), and the skipping renderer's fog transmittance
+// volume filled with NaN before each frame (GpuOptions::poisonShadowVolume: the shadow volume pass
+// skips the cells behind the froxels the frame computes, and a light pass reading one would show).
+// Stops the test on an error (HasFatalFailure()).
 struct SkippingAndFull {
     std::unique_ptr<GpuRenderer> skipping, full;
 
-    void create(bool poisonIntegrated) {
+    void create(bool poison) {
         GpuOptions options;
         options.validation = true;
-        options.poisonIntegrated = poisonIntegrated;
+        options.poisonIntegrated = poison;
+        options.poisonShadowVolume = poison;
         auto a = GpuRenderer::create(options);
         ASSERT_TRUE(a.ok()) << a.error().message;
         skipping = std::move(a.value());
+        options.poisonShadowVolume = false;
         options.skipHiddenFroxels = false;
         auto b = GpuRenderer::create(options);
         ASSERT_TRUE(b.ok()) << b.error().message;
@@ -452,21 +457,27 @@ struct SkippingAndFull {
 }  // namespace
 
 // The GPU lights and resolves only the froxels in front of each column's deepest stored integrated
-// entry (shaders/column_entries.glsl, GpuOptions::skipHiddenFroxels). The image at rest must not
-// change: each frame of a rest equals, pixel for pixel, the frame of a renderer that computes every
-// froxel (both with the integrated scattering poisoned where unstored). Once the view moves, a froxel
-// the motion uncovers has no history (the previous frame skipped it): those frames differ from the
-// full renderer's a little, and stay within the GPU-vs-CPU tolerance of the CPU froxel renderer,
-// which computes every froxel. Scenes: ground, sky and a glowing point light (temporalScene), the same with the camera
-// inside the light's glow, and with a wall between the camera and the light; `low` and `high`; an
-// odd size (partial last columns).
+// entry (shaders/column_entries.glsl, GpuOptions::skipHiddenFroxels), and computes only the shadow
+// volume's cells those froxels read (shadow_volume.comp). The image at rest must not change: each
+// frame of a rest equals, pixel for pixel, the frame of a renderer that computes every froxel (both
+// with the integrated scattering poisoned where unstored, the skipping one's shadow volume too). Once
+// the view moves, a froxel the motion uncovers has no history (the previous frame skipped it): those
+// frames differ from the full renderer's a little, and stay within the GPU-vs-CPU tolerance of the CPU
+// froxel renderer, which computes every froxel. Scenes: ground, sky, a sun and a glowing point light
+// (temporalScene), the same with the camera inside the light's glow, and with a wall between the
+// camera and the light; `low` and `high`; an odd size (partial last columns).
 TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
     SkippingAndFull renderers;
-    renderers.create(/*poisonIntegrated=*/true);
+    renderers.create(/*poison=*/true);
     if (HasFatalFailure()) return;
     Scene outside = temporalScene();
     outside.froxels.tile_px.reset();  // the presets' tiles and slices
     outside.froxels.slices.reset();
+    // A sun too: its fog shadows read the shadow volume at every preset (the local lights' only at some).
+    Light sun = makeLight(LightType::Directional);
+    sun.direction = glm::normalize(glm::vec3(0.5f, -0.8f, -0.3f));
+    sun.intensity = 2.0f;
+    outside.lights.push_back(sun);
     Scene inside = outside;
     inside.lights[1].position = inside.camera.position + glm::vec3(0.05f, -0.05f, -0.1f);
     // The glowing light 0.6 m behind a wall, its glow ball (~0.9 m at `high`) poking through: the glow's
@@ -533,7 +544,7 @@ TEST(GpuTemporal, RestFramesThatSkipHiddenFroxelsEqualThoseThatComputeThemAll) {
 // mean), and far from the ghost of the first view.
 TEST(GpuTemporal, AFrameThatComputesEveryFroxelReadsNoHistoryFromAnotherView) {
     SkippingAndFull renderers;
-    renderers.create(/*poisonIntegrated=*/false);
+    renderers.create(/*poison=*/false);
     if (HasFatalFailure()) return;
     Scene base = temporalScene();
     RenderRequest req;
