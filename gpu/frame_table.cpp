@@ -21,8 +21,8 @@ const std::array<PassDecl, 17> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light passes read it, and with vdb grids the geometry pass's surfaces its vdb layers: in scenes
     // with vdb grids it runs here, before them (the entry after the column ends is left out).
-    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::VdbScene, Record::ShadowCells,
-     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids, B::columnEnds},
+    {"shadow volume", "shadow_volume", Variant::ShadowVolumeVdb, Dispatch::ShadowCells, When::VdbScene, Record::ShadowCells,
+     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids},
      {B::shadowTransmittance}, true, true},
     // Planes, boxes and spheres rasterized and shaded like core/geometry.cpp shadeSurface with the
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
@@ -44,8 +44,8 @@ const std::array<PassDecl, 17> kPasses{{
      {B::frame, B::depthTiles}, {B::columnEnds}, true},
     // The shadow volume in scenes without vdb grids (the surfaces read none of it): after the column
     // ends, each cell column only down to the deepest cell this frame's froxels read (shadow_volume.comp).
-    {"shadow volume", "shadow_volume", Variant::ShadowVolume, Dispatch::ShadowCells, When::NoVdbScene, Record::ShadowCells,
-     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids, B::columnEnds},
+    {"shadow volume", "shadow_volume", Variant::Shapes, Dispatch::ShadowCells, When::NoVdbScene, Record::ShadowCells,
+     {B::frame, T::volumeTexels, B::lights, B::lightClusters, B::vdbGrids, T::columnEndTexels},
      {B::shadowTransmittance}, true, true},
     // Media of every volume at each froxel's sample point, over the froxels that can hold media
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
@@ -61,7 +61,7 @@ const std::array<PassDecl, 17> kPasses{{
     {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       B::localShadowMaps, B::vdbGrids, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
-      B::columnEnds},
+      T::columnEndTexels},
      {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
@@ -74,14 +74,14 @@ const std::array<PassDecl, 17> kPasses{{
     // clears stale history: integrate_rest resolves each froxel itself.
     {"temporal", "temporal", Variant::None, Dispatch::RegionRuns, When::Always, Record::TemporalCopy,
      {B::frame, B::previousFrame, I::sourceImage, I::sourceExtinction, historyIn(H::historySource),
-      historyIn(H::historyExtinction), B::columnEnds},
+      historyIn(H::historyExtinction), T::columnEndTexels},
      {historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // Front to back along each froxel column (closed-form slabs), over the temporal region's columns.
     // At rest (_rest) it first resolves each froxel with its own history, writing the history's output
     // as the temporal pass would have. The resolved S and sigma_t are read from the history's output
     // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
     {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
-     {B::frame, B::columnEnds, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
+     {B::frame, T::columnEndTexels, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
       historyOut(H::historySource), historyOut(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},
     // The height and depth fog past the froxel far, in closed form per tile corner and depth
@@ -176,7 +176,7 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
         if (k.vdb) name += "_vdb";
         if (k.textures) name += "_texture";
         if (quantized) name += std::string("_") + toString(k.encoding);
-    } else if (v == Variant::ShadowVolume && k.vdb) {
+    } else if (v == Variant::ShadowVolumeVdb) {
         name += "_vdb";
         if (quantized) name += std::string("_") + toString(k.encoding);
     }
@@ -184,7 +184,7 @@ std::string variantShaderName(const char* shader, Variant v, const VariantKey& k
         name += "_media";
         if (k.textures) name += "_texture";
     }
-    if ((v == Variant::ShadowVolume || v == Variant::Shapes || v == Variant::LightMedia) && k.shapes) name += "_shapes";
+    if ((v == Variant::ShadowVolumeVdb || v == Variant::Shapes || v == Variant::LightMedia) && k.shapes) name += "_shapes";
     if (v == Variant::Temporal && k.temporalRest) name += "_rest";
     return name + ".comp";
 }

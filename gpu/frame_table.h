@@ -211,7 +211,8 @@ enum class Dispatch : uint8_t {
 enum class Variant : uint8_t {
     None,          // the shader as named
     Voxelize,      // _vdb when the scene has vdb volumes, _texture with density textures, _fp16/_fp8 per encoding
-    ShadowVolume,  // _vdb when the scene has vdb volumes, then _fp16/_fp8 per encoding; then _shapes
+    ShadowVolumeVdb,  // _vdb, then _fp16/_fp8 per encoding (the vdb volumes' encoding); then _shapes as Shapes:
+                      // the shadow volume's place for scenes with vdb volumes (When::VdbScene)
     Shapes,        // _shapes when some volume needs the sampled fog shadow integral (shared/shadows.h)
     LightMedia,    // the light passes: _media (then _texture with density textures) without vdb volumes
                    // (VariantKey::inlineMedia), then _shapes as Shapes

@@ -78,7 +78,8 @@ Result<void> GpuRenderer::State::createPasses() {
     // Every pass's plain variant now, so that a broken build fails here and the first frame is not
     // slower than the next; the others when a scene first needs them.
     for (const PassDecl& p : kPasses) {
-        if (p.dispatch == Dispatch::Raster) continue;
+        // The vdb place of the shadow volume (shadow_volume_vdb) only when a scene with vdb volumes needs it.
+        if (p.dispatch == Dispatch::Raster || p.when == When::VdbScene) continue;
         Result<const ComputePass*> pass = pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, {}));
         if (!pass) return pass.error();
     }

@@ -53,9 +53,11 @@ int columnEndIndex(ivec2 column, int side) {
     ivec3 d = frame.froxelDims.xyz;
     return (side * d.y + column.y) * d.x + column.x;
 }
-ivec2 currentColumnEntries(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))].xy; }
-int currentColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, int(frame.temporal.w))].z; }
-int previousColumnEnd(ivec2 column) { return columnEnd[columnEndIndex(column, 1 - int(frame.temporal.w))].z; }
+// Read through the texel view columnEndTexels: lavapipe loads a storage buffer lane by lane, a texel
+// view through its vector gather (shared/frame_table.h).
+ivec2 currentColumnEntries(ivec2 column) { return texelFetch(columnEndTexels, columnEndIndex(column, int(frame.temporal.w))).xy; }
+int currentColumnEnd(ivec2 column) { return texelFetch(columnEndTexels, columnEndIndex(column, int(frame.temporal.w))).z; }
+int previousColumnEnd(ivec2 column) { return texelFetch(columnEndTexels, columnEndIndex(column, 1 - int(frame.temporal.w))).z; }
 
 // How many cells along z of the fog transmittance volume's cell column c this frame's froxels read
 // (the shadow volume pass computes no deeper one). A froxel reads the cells around it on each axis,

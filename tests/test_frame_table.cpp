@@ -226,7 +226,7 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {true, true, VdbEncoding::Fp16}),
               "voxelize_vdb_texture_fp16.comp");
     EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, {false, true, VdbEncoding::Float}), "voxelize_texture.comp");
-    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, {true, true, VdbEncoding::Fp8}),
+    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolumeVdb, {true, true, VdbEncoding::Fp8}),
               "shadow_volume_vdb_fp8.comp");
     EXPECT_EQ(variantShaderName("light", Variant::None, {true, true, VdbEncoding::Fp8}), "light.comp");
     // The light passes' lookups are compiled out by specialization constants, not variants.
@@ -248,7 +248,9 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
     VariantKey vdbShaped = shaped;
     vdbShaped.vdb = true;
     vdbShaped.encoding = VdbEncoding::Fp16;
-    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolume, vdbShaped), "shadow_volume_vdb_fp16_shapes.comp");
+    EXPECT_EQ(variantShaderName("shadow_volume", Variant::ShadowVolumeVdb, vdbShaped), "shadow_volume_vdb_fp16_shapes.comp");
+    // The shadow volume's place without vdb volumes never names the vdb variant.
+    EXPECT_EQ(variantShaderName("shadow_volume", Variant::Shapes, vdbShaped), "shadow_volume_shapes.comp");
     EXPECT_EQ(variantShaderName("voxelize", Variant::Voxelize, shaped), "voxelize.comp");
     // At rest the integrate pass resolves the history (integrate_rest.comp); the temporal pass has no variant.
     VariantKey rest;

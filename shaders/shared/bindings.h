@@ -44,8 +44,8 @@ BRUME_CONST int TEMPORAL_GROUP_X = 8;
 BRUME_CONST int TEMPORAL_GROUP_Y = 8;
 // The shadow volume pass: one invocation per run of SHADOW_RUN cells along z of a layer's region,
 // FROXEL_GROUP_X x FROXEL_GROUP_Y x FROXEL_GROUP_Z runs per workgroup. Without vdb grids its loop ends
-// at the deepest cell a lit froxel reads (shaders/column_entries.glsl shadowCellEnd). 16 rather than 8:
-// at 1280x720 `high` the light passes after it measured 0.8-0.9x (docs/performance.md, "shadowskip").
+// at the deepest cell a lit froxel reads (shaders/column_entries.glsl shadowCellEnd). Runs of 8 at
+// `low` measured the same (docs/performance.md, "shadowskip").
 BRUME_CONST int SHADOW_RUN = 16;
 
 // The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis

@@ -91,6 +91,9 @@
 //                       exact, geometry, shadow volume, distant fog)
 //   sunShadowTexels     sunShadowMap as rgba32f texels: the fit's SUN_SHADOW_FIT_TEXELS vec4s, then the
 //                       depths 4 to a texel (sun_shadow.glsl): the light passes' and the surfaces' reads
+//   columnEndTexels     columnEnds as rgba32i texels (column_entries.glsl): the reads of the walk ends by
+//                       the shadow volume (up to 64 a run), light, temporal (4 a froxel in motion) and
+//                       integrate passes; the column ends pass writes the buffer
 // Which passes read a buffer through its views is a define per shader (resources.glsl); a pass reads
 // a buffer through its views or through the buffer, not both (docs/performance.md, "light3").
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
@@ -99,7 +102,8 @@
     X(lightTexels, 28, lights, rgba32i) \
     X(distantTexels, 29, distantTable, rgba32f) \
     X(volumeTexels, 30, volumes, rgba32i) \
-    X(sunShadowTexels, 34, sunShadowMap, rgba32f)
+    X(sunShadowTexels, 34, sunShadowMap, rgba32f) \
+    X(columnEndTexels, 38, columnEnds, rgba32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
