@@ -378,6 +378,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(BufferId::columnEnds,
                            2 * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * sizeof(glm::ivec4), dirty));
     const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
+    // The composites read a list's tiles through its r32i texel view, past the header's texels.
+    static_assert(sizeof(shd::ExactListHeader) == shd::TILE_LIST_HEADER_TEXELS * sizeof(int32_t));
     BRUME_TRY(ensureBuffer(BufferId::nearTiles, tileList, dirty));
     BRUME_TRY(ensureBuffer(BufferId::farTiles, tileList, dirty));
     BRUME_TRY(ensureBuffer(BufferId::allFarTiles, tileList, dirty));

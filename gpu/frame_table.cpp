@@ -41,7 +41,7 @@ const std::array<PassDecl, 17> kPasses{{
     // half of columnEnds; the other half keeps the previous frame's, which the temporal and integrate
     // passes read for the history.
     {"column ends", "column_ends", Variant::None, Dispatch::Columns, When::Always, Record::ColumnEnds,
-     {B::frame, B::depthTiles}, {B::columnEnds}, true},
+     {B::frame, T::depthTileTexels}, {B::columnEnds}, true},
     // The shadow volume in scenes without vdb grids (the surfaces read none of it): after the column
     // ends, each cell column only down to the deepest cell this frame's froxels read (shadow_volume.comp).
     {"shadow volume", "shadow_volume", Variant::Shapes, Dispatch::ShadowCells, When::NoVdbScene, Record::ShadowCells,
@@ -88,7 +88,7 @@ const std::array<PassDecl, 17> kPasses{{
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);
     // the composite interpolates it.
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
-     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, B::depthTiles},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::depthTileTexels},
      {B::distantTable}, true},
     // With distant fog, the tiles within the froxel far, those past it and the others, as three
     // indirect dispatches (one invocation walks the depth tiles: tile_lists.comp).
@@ -97,16 +97,16 @@ const std::array<PassDecl, 17> kPasses{{
     // Fog over the surfaces from the integrated volume: the region's pixels, or with distant fog the
     // near tiles (composite_body.glsl).
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
-     {B::frame, B::nearTiles, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
+     {B::frame, T::nearTileTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
      {I::outputImage}, true},
     // The far tiles: fog continued past the froxel far from the distant fog table.
     {"composite far", "composite_far", Variant::None, Dispatch::FarTiles, When::Always, Record::Dispatch,
-     {B::frame, B::farTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
+     {B::frame, T::farTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
      {I::outputImage}, true},
     // The tiles wholly past the froxel far: as the far tiles, the integrated volume's last entry read once.
     {"composite all far", "composite_all_far", Variant::None, Dispatch::AllFarTiles, When::Always, Record::Dispatch,
-     {B::frame, B::allFarTiles, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
+     {B::frame, T::allFarTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),

@@ -28,7 +28,8 @@ ivec2 columnEntryRange(ivec2 column) {
     float shallowest = BRUME_HUGE;
     for (int ty = t0.y; ty <= t1.y; ++ty)
         for (int tx = t0.x; tx <= t1.x; ++tx) {
-            vec2 range = depthTileRange[depthTileIndex(tiles, ivec2(tx, ty))];
+            // Through the texel view: lavapipe loads a storage buffer lane by lane (shared/frame_table.h).
+            vec2 range = texelFetch(depthTileTexels, depthTileIndex(tiles, ivec2(tx, ty))).xy;
             deepest = max(deepest, range.x);
             shallowest = min(shallowest, range.y);
         }

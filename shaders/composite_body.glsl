@@ -79,16 +79,18 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
 // The pixel this invocation composites: with distant fog (SPEC_DISTANT_FOG), the workgroup's 8x8 tile
 // from the list of its variant (tile_lists.comp); else the region's pixels (the push constants).
 ivec2 compositePixel() {
+    // Through the list's texel view: lavapipe loads a storage buffer lane by lane (shared/frame_table.h).
+    int listed = TILE_LIST_HEADER_TEXELS + int(gl_WorkGroupID.x);
 #if defined(BRUME_COMPOSITE_ALL_FAR)
-    uint tile = allFarTileIndex[gl_WorkGroupID.x];
+    uint tile = uint(texelFetch(allFarTileTexels, listed).x);
 #elif defined(BRUME_COMPOSITE_FAR)
-    uint tile = farTileIndex[gl_WorkGroupID.x];
+    uint tile = uint(texelFetch(farTileTexels, listed).x);
 #else
-    uint tile = nearTileIndex[gl_WorkGroupID.x];
+    uint tile = uint(texelFetch(nearTileTexels, listed).x);
 #endif
     ivec2 tiles = depthTileCount(frame.counts.xy);
-    ivec2 listed = ivec2(int(tile) % tiles.x, int(tile) / tiles.x) * DISTANT_TILE_PX + ivec2(gl_LocalInvocationID.xy);
-    return SPEC_DISTANT_FOG != 0 ? listed : ivec2(gl_GlobalInvocationID.xy) + region.lo.xy;
+    ivec2 px = ivec2(int(tile) % tiles.x, int(tile) / tiles.x) * DISTANT_TILE_PX + ivec2(gl_LocalInvocationID.xy);
+    return SPEC_DISTANT_FOG != 0 ? px : ivec2(gl_GlobalInvocationID.xy) + region.lo.xy;
 }
 
 void main() {

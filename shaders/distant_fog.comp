@@ -90,7 +90,7 @@ int distantTableEntriesRead(ivec2 c, int n) {
     ivec2 last = min(c, tiles - 1);
     float deepest = 0.0f;
     for (int y = first.y; y <= last.y; ++y)
-        for (int x = first.x; x <= last.x; ++x) deepest = max(deepest, depthTileRange[depthTileIndex(tiles, ivec2(x, y))].x);
+        for (int x = first.x; x <= last.x; ++x) deepest = max(deepest, texelFetch(depthTileTexels, depthTileIndex(tiles, ivec2(x, y))).x);
     if (!(deepest > frame.froxelRange.y)) return 0;
     // One entry more than the deepest pixel's: the lookup's log and ceil need not match bit for bit.
     return min(distantTableLookup(vec2(0.0f), deepest, frame, n).entry + 1, n);

@@ -13,6 +13,7 @@ BRUME_FRAME_BUFFERS(BRUME_GLSL_BUFFER)
 // vec4 for the float formats, an ivec4 for the integer ones.
 #define BRUME_GLSL_SAMPLER_rgba32f samplerBuffer
 #define BRUME_GLSL_SAMPLER_r32f samplerBuffer
+#define BRUME_GLSL_SAMPLER_rg32f samplerBuffer
 #define BRUME_GLSL_SAMPLER_r32i isamplerBuffer
 #define BRUME_GLSL_SAMPLER_rgba32i isamplerBuffer
 #define BRUME_GLSL_TEXEL_VIEW(id, binding_, buffer, format) \

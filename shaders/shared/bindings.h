@@ -25,6 +25,9 @@ struct ExactListHeader {
     uint groupsZ;
     uint count;
 };
+// The r32i texels of an ExactListHeader: a tile list's texel view (frame_table.h nearTileTexels) holds its
+// tiles from this texel on.
+BRUME_CONST int TILE_LIST_HEADER_TEXELS = 4;
 // Invocations per workgroup of the exact light pass (one per listed froxel).
 BRUME_CONST int LIGHT_EXACT_GROUP = 64;
 // The light pass: one invocation per run of LIGHT_RUN froxels along z (at most 32: the run's exact

@@ -94,6 +94,11 @@
 //   columnEndTexels     columnEnds as rgba32i texels (column_entries.glsl): the reads of the walk ends by
 //                       the shadow volume (up to 64 a run), light, temporal (4 a froxel in motion) and
 //                       integrate passes; the column ends pass writes the buffer
+//   depthTileTexels     depthTiles as rg32f texels: the column ends pass's (up to 36 a column) and the
+//                       distant fog pass's reads of the tiles' depths
+//   nearTileTexels, farTileTexels, allFarTileTexels
+//                       the tile lists as r32i texels: each composite invocation's read of its tile
+//                       (TILE_LIST_HEADER_TEXELS, then the tiles), the same for the workgroup's 64
 // Which passes read a buffer through its views is a define per shader (resources.glsl); a pass reads
 // a buffer through its views or through the buffer, not both (docs/performance.md, "light3").
 #define BRUME_FRAME_TEXEL_VIEWS(X) \
@@ -103,7 +108,11 @@
     X(distantTexels, 29, distantTable, rgba32f) \
     X(volumeTexels, 30, volumes, rgba32i) \
     X(sunShadowTexels, 34, sunShadowMap, rgba32f) \
-    X(columnEndTexels, 38, columnEnds, rgba32i)
+    X(columnEndTexels, 38, columnEnds, rgba32i) \
+    X(depthTileTexels, 39, depthTiles, rg32f) \
+    X(nearTileTexels, 40, nearTiles, r32i) \
+    X(farTileTexels, 41, farTiles, r32i) \
+    X(allFarTileTexels, 42, allFarTiles, r32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
