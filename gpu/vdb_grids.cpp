@@ -39,9 +39,11 @@ Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& d
                      /*badInput=*/true};
     const VkDeviceSize size = std::max<VkDeviceSize>(total, 32);
     if (!buffer.buffer || buffer.size != size) {
+        // Its texel view (vdbGridTexels, which the shaders read) goes first; ensureTexelViews makes it again.
+        res.texelViews[static_cast<size_t>(TexelViewId::vdbGridTexels)].reset();
         buffer = Buffer{};
-        Result<Buffer> b = createBuffer(*device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::Upload,
-                                        decl(BufferId::vdbGrids).name);
+        Result<Buffer> b = createBuffer(*device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                        Memory::Upload, decl(BufferId::vdbGrids).name);
         if (!b) return b.error();
         buffer = std::move(b.value());
         dirty = true;

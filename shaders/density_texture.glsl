@@ -1,12 +1,8 @@
 // Density textures on the GPU (core: densityTextureFactor): the 8 voxels of shared/density_texture.h's
 // textureCell, read with PNanoVDB from the same bytes the CPU samples (the texture grids follow the
-// vdb volumes' grids in vdbGridWords (resources.glsl); VolumeData.textureMin.w is a texture's byte offset), mixed
-// by vdbTrilinear. Include after vdb_sample.glsl when both are used: that file includes PNanoVDB.
-#ifndef BRUME_VOXELIZE_VDB
-#define PNANOVDB_GLSL
-#define pnanovdb_buf_data vdbGridWords
-#include "nanovdb/PNanoVDB.h"
-#endif
+// vdb volumes' grids in the texel view vdbGridTexels (pnanovdb_texels.glsl); VolumeData.textureMin.w is a
+// texture's byte offset), mixed by vdbTrilinear.
+#include "pnanovdb_texels.glsl"
 
 float textureVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
     return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
@@ -17,7 +13,7 @@ float textureVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 
 // loop body, so the walk's code is emitted once.
 float densityTextureFactor(VolumeData v, vec3 worldPos) {
     if (!hasDensityTexture(v)) return 1.0f;
-    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // GLSL's PNanoVDB reads the global vdbGridWords
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // the reads go to vdbGridTexels (pnanovdb_texels.glsl)
     float factor = 1.0f;
     int layers = hasDetailTexture(v) ? 2 : 1;
     for (int layer = 0; layer < layers; ++layer) {

@@ -1,10 +1,9 @@
 // Grid sampling of vdb volumes with PNanoVDB (core: DensityGrid::sampleIndex through NanoVDB): the
 // same 8 voxels of shared/vdb.h's vdbCell, mixed by the same vdbTrilinear, read from the very bytes
-// the CPU samples (resources.glsl's vdbGridWords holds them back to back; VolumeData.kind.y is a grid's offset).
+// the CPU samples (the texel view vdbGridTexels holds them back to back: pnanovdb_texels.glsl;
+// VolumeData.kind.y is a grid's offset).
 
-#define PNANOVDB_GLSL
-#define pnanovdb_buf_data vdbGridWords
-#include "nanovdb/PNanoVDB.h"
+#include "pnanovdb_texels.glsl"
 
 // One encoding per compiled variant (docs/vdb.md "Encodings"): shaders/CMakeLists.txt builds the vdb
 // shaders again with BRUME_VDB_FP16 or BRUME_VDB_FP8 defined. A runtime branch on the grid type
@@ -33,10 +32,10 @@ float vdbVoxel(pnanovdb_buf_t buf, inout pnanovdb_readaccessor_t acc, ivec3 ijk)
 // shared/vdb.h vdbOccupancyWord), read from the cells after the grid (VolumeData.kind.w).
 bool vdbOccupied(VolumeData v, ivec3 base) {
     uint h = uint(vdbGridOffset(v) + vdbOccupancyOffset(v)) / 4u;
-    ivec3 origin = ivec3(int(vdbGridWords[h]), int(vdbGridWords[h + 1u]), int(vdbGridWords[h + 2u]));
-    ivec3 dims = ivec3(int(vdbGridWords[h + 4u]), int(vdbGridWords[h + 5u]), int(vdbGridWords[h + 6u]));
+    ivec3 origin = ivec3(int(vdbGridWord(h)), int(vdbGridWord(h + 1u)), int(vdbGridWord(h + 2u)));
+    ivec3 dims = ivec3(int(vdbGridWord(h + 4u)), int(vdbGridWord(h + 5u)), int(vdbGridWord(h + 6u)));
     int w = vdbOccupancyWord(base, origin, dims);
-    return w >= 0 && vdbGridWords[h + uint(VDB_OCCUPANCY_HEADER_WORDS + w)] != 0u;
+    return w >= 0 && vdbGridWord(h + uint(VDB_OCCUPANCY_HEADER_WORDS + w)) != 0u;
 }
 
 // Density of vdb volume v at a world position, without bounds test (core: plainVolumeDensity), with
@@ -45,7 +44,7 @@ bool vdbOccupied(VolumeData v, ivec3 base) {
 float vdbDensity(VolumeData v, vec3 worldPos) {
     if (!vdbHasGrid(v)) return 0.0f;
     if (vdbOccupancyOffset(v) != 0 && !vdbOccupied(v, vdbCell(vdbIndexPos(v, worldPos)).base)) return 0.0f;
-    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // GLSL's PNanoVDB reads the global vdbGridWords
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);  // the reads go to vdbGridTexels (pnanovdb_texels.glsl)
     pnanovdb_grid_handle_t grid;
     grid.address.byte_offset = uint(vdbGridOffset(v));
     pnanovdb_readaccessor_t acc;

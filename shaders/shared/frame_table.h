@@ -96,6 +96,8 @@
 //                       integrate passes; the column ends pass writes the buffer
 //   depthTileTexels     depthTiles as rg32f texels: the column ends pass's (up to 36 a column) and the
 //                       distant fog pass's reads of the tiles' depths
+//   vdbGridTexels       vdbGrids as r32i texels: every read of a grid or a density texture (PNanoVDB's
+//                       tree walks, the occupancy cells; pnanovdb_texels.glsl)
 //   nearTileTexels, farTileTexels, allFarTileTexels
 //                       the tile lists as r32i texels: each composite invocation's read of its tile
 //                       (TILE_LIST_HEADER_TEXELS, then the tiles), the same for the workgroup's 64
@@ -112,7 +114,8 @@
     X(depthTileTexels, 39, depthTiles, rg32f) \
     X(nearTileTexels, 40, nearTiles, r32i) \
     X(farTileTexels, 41, farTiles, r32i) \
-    X(allFarTileTexels, 42, allFarTiles, r32i)
+    X(allFarTileTexels, 42, allFarTiles, r32i) \
+    X(vdbGridTexels, 43, vdbGrids, r32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
