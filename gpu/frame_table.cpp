@@ -28,7 +28,7 @@ const std::array<PassDecl, 17> kPasses{{
     // fog's shadow and the shadow maps; sky = ambient at the camera far. Specialized with the volumes
     // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::SurfacesChanged, Record::Geometry,
-     {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels, B::localShadowMaps,
+     {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels, T::localShadowTexels,
       T::volumeTexels},
      {I::sceneColor, I::sceneDepth}, true},
     // The deepest and shallowest scene depth of each 8x8 pixel tile: integrate keeps the entries of
@@ -60,13 +60,13 @@ const std::array<PassDecl, 17> kPasses{{
     // Each column only down to its walk end (columnEnds): the froxels behind are never read.
     {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      B::localShadowMaps, T::vdbGridTexels, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
+      T::localShadowTexels, T::vdbGridTexels, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
       T::columnEndTexels},
      {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      B::localShadowMaps, T::vdbGridTexels, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
+      T::localShadowTexels, T::vdbGridTexels, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
       B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region

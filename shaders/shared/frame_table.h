@@ -98,6 +98,8 @@
 //                       distant fog pass's reads of the tiles' depths
 //   vdbGridTexels       vdbGrids as r32i texels: every read of a grid or a density texture (PNanoVDB's
 //                       tree walks, the occupancy cells; pnanovdb_texels.glsl)
+//   localShadowTexels   localShadowMaps as r32f texels: the point/spot shadow maps' 4 depths per lookup
+//                       (local_shadow.glsl) by the light passes and the surfaces
 //   nearTileTexels, farTileTexels, allFarTileTexels
 //                       the tile lists as r32i texels: each composite invocation's read of its tile
 //                       (TILE_LIST_HEADER_TEXELS, then the tiles), the same for the workgroup's 64
@@ -115,7 +117,8 @@
     X(nearTileTexels, 40, nearTiles, r32i) \
     X(farTileTexels, 41, farTiles, r32i) \
     X(allFarTileTexels, 42, allFarTiles, r32i) \
-    X(vdbGridTexels, 43, vdbGrids, r32i)
+    X(vdbGridTexels, 43, vdbGrids, r32i) \
+    X(localShadowTexels, 44, localShadowMaps, r32f)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):
