@@ -321,6 +321,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     // Storage buffers cannot be empty: keep room for at least one record.
     BRUME_TRY(ensureBuffer(BufferId::volumes, std::max<size_t>(cs.volumes.size(), 1) * sizeof(shd::VolumeData), dirty));
     BRUME_TRY(ensureBuffer(BufferId::lights, std::max<size_t>(cs.lights.size(), 1) * sizeof(shd::LightData), dirty));
+    // Its readers go through the rgba32f texel view influenceTexels (shaders/influence.glsl).
+    static_assert(sizeof(shd::InfluenceHeader) == 16 * shd::INFLUENCE_HEADER_TEXELS && sizeof(shd::InfluenceSample) == 32);
     BRUME_TRY(ensureBuffer(BufferId::influence,
                            sizeof(shd::InfluenceHeader) +
                                std::max<size_t>(cs.influence.samples.size(), 1) * sizeof(shd::InfluenceSample),

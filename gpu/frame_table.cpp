@@ -51,7 +51,7 @@ const std::array<PassDecl, 17> kPasses{{
     // (core/media_region.h); the rest of the media and source images is cleared to 0.
     // Specialized: SPEC_INFLUENCERS compiles the influencers' factor out of scenes without them.
     {"voxelize", "voxelize", Variant::Voxelize, Dispatch::MediaFroxels, When::Always, Record::ClearMedia,
-     {B::frame, T::volumeTexels, T::vdbGridTexels, B::influence},
+     {B::frame, T::volumeTexels, T::vdbGridTexels, T::influenceTexels},
      {I::mediaScatteringG, I::mediaExtinction, I::mediaEmission, I::sourceImage, I::sourceExtinction}, true, true},
     // Source S = sigma_s x (lights x fog transmittance x shadow maps + ambient) + emission, with the
     // shadow volume's trusted blends; lists the froxels where a blend is not trusted (light_body.glsl).
@@ -60,13 +60,13 @@ const std::array<PassDecl, 17> kPasses{{
     // Each column only down to its walk end (columnEnds): the froxels behind are never read.
     {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      T::localShadowTexels, T::vdbGridTexels, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
+      T::localShadowTexels, T::vdbGridTexels, T::influenceTexels, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
       T::columnEndTexels},
      {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
     {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
-      T::localShadowTexels, T::vdbGridTexels, B::influence, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
+      T::localShadowTexels, T::vdbGridTexels, T::influenceTexels, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
       B::exactList},
      {I::sourceImage}, true, true},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
@@ -113,7 +113,7 @@ const std::array<PassDecl, 17> kPasses{{
     // added to the output over each glowing light's screen rectangle only.
     // Specialized like the froxel passes: the _media variants evaluate the froxel passes' volume list.
     {"glow", "glow", Variant::GlowMedia, Dispatch::GlowRects, When::Always, Record::Glow,
-     {B::frame, T::lightTexels, T::volumeTexels, T::vdbGridTexels, B::influence, I::integratedTransmittance, I::sceneDepth,
+     {B::frame, T::lightTexels, T::volumeTexels, T::vdbGridTexels, T::influenceTexels, I::integratedTransmittance, I::sceneDepth,
       I::mediaScatteringG, historyOut(H::historySource), historyOut(H::historyExtinction), I::outputImage},
      {I::outputImage}, true, true},
     // One depth slice of density, scattering or transmittance over the output (only when asked).

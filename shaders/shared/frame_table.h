@@ -100,6 +100,8 @@
 //                       tree walks, the occupancy cells; pnanovdb_texels.glsl)
 //   localShadowTexels   localShadowMaps as r32f texels: the point/spot shadow maps' 4 depths per lookup
 //                       (local_shadow.glsl) by the light passes and the surfaces
+//   influenceTexels     influence as rgba32f texels: the header's 3 (INFLUENCE_HEADER_TEXELS), then 2 per
+//                       InfluenceSample (influence.glsl): the inline media's and voxelize's reads
 //   nearTileTexels, farTileTexels, allFarTileTexels
 //                       the tile lists as r32i texels: each composite invocation's read of its tile
 //                       (TILE_LIST_HEADER_TEXELS, then the tiles), the same for the workgroup's 64
@@ -118,7 +120,8 @@
     X(farTileTexels, 41, farTiles, r32i) \
     X(allFarTileTexels, 42, allFarTiles, r32i) \
     X(vdbGridTexels, 43, vdbGrids, r32i) \
-    X(localShadowTexels, 44, localShadowMaps, r32f)
+    X(localShadowTexels, 44, localShadowMaps, r32f) \
+    X(influenceTexels, 45, influence, rgba32f)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

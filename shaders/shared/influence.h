@@ -21,7 +21,10 @@ struct InfluenceSample {
     vec4 b;  // xyz: the other end (a sphere: = a) [m]; w: strength in [0, 1]
 };
 
-// Ahead of the samples in the GPU's influence buffer; the CPU keeps the same record. 48 bytes.
+// Ahead of the samples in the GPU's influence buffer; the CPU keeps the same record. 48 bytes: the
+// buffer's texel view (influenceTexels, rgba32f) holds it in its first INFLUENCE_HEADER_TEXELS texels,
+// then each InfluenceSample in 2.
+BRUME_CONST int INFLUENCE_HEADER_TEXELS = 3;
 struct InfluenceHeader {
     ivec4 count;     // x: samples; yzw unused
     vec4 boundsMin;  // xyz: the samples' world box (each one's axis grown by its radius); w unused
