@@ -46,6 +46,11 @@ struct GpuOptions {
     // scattering with NaN, so that a lookup of an entry the integrate pass did not store this frame
     // (it stores only those some pixel or the glow can read: shaders/integrate.comp) shows in the image.
     bool poisonIntegrated = false;
+    // Tests only: each frame whose media region is not the whole grid first fills S and sigma_t (sourceImage,
+    // sourceExtinction) with 1 (a finite value: the temporal resolve replaces a non-finite sample, so NaN
+    // would hide), so that a temporal or integrate pass reading a froxel the light pass did not write
+    // this frame shows in the image (it writes the temporal region: light_body.glsl).
+    bool poisonSource = false;
     // false: every frame lights and resolves every froxel. true (the default): the froxels behind every
     // integrated entry a lookup reads are skipped (shaders/column_entries.glsl). The image at rest is
     // the same; in motion a froxel uncovered by the motion starts without history (docs/temporal.md,

@@ -408,12 +408,18 @@ void recordClearMedia(const PassContext& ctx) {
     const bool dispatches = voxelizeDispatches(*ctx.variant, ctx.readBackVolumes);
     auto cleared = [&](ResRef w) {
         if (w.kind != ResRef::Kind::Image) return false;
-        if (w == ResRef(ImageId::mediaEmission)) return ctx.readBackVolumes && (partial || !r.mediaEmits);
+        // mediaEmission: the read-back volumes read all of it; with vdb volumes (voxelize stores the media)
+        // the light pass loads it over the temporal region too, the media region's shell included.
+        if (w == ResRef(ImageId::mediaEmission))
+            return (ctx.readBackVolumes && (partial || !r.mediaEmits)) || (partial && dispatches && r.mediaEmits);
         // Inline media: only the read-back volumes read mediaScatteringG (glow computes it), and nothing
         // reads mediaExtinction (the light pass computes sigma_t and stores it in sourceImage and
         // sourceExtinction, which are cleared here for the temporal and integrate passes).
         if (w == ResRef(ImageId::mediaScatteringG) || w == ResRef(ImageId::mediaExtinction)) return partial && dispatches;
-        return partial;
+        // S and sigma_t: the light pass writes them over the temporal region (0 where there are no
+        // media), which is all the temporal and integrate passes read; the read-back volumes read the
+        // whole grid. Tests poison them instead (GpuOptions::poisonSource).
+        return partial && (ctx.readBackVolumes || ctx.poisonSource);
     };
     bool any = false;
     for (ResRef w : ctx.pass->writes) any = any || cleared(w);
@@ -424,11 +430,16 @@ void recordClearMedia(const PassContext& ctx) {
         memoryBarrier(ctx.cmd, compute | transfer, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, transfer,
                       VK_ACCESS_TRANSFER_WRITE_BIT);
         const VkClearColorValue zero{};
+        // GpuOptions::poisonSource: finite, since the temporal resolve replaces non-finite samples.
+        const VkClearColorValue poison{{1.0f, 1.0f, 1.0f, 1.0f}};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        for (ResRef w : ctx.pass->writes)
-            if (cleared(w))
-                vkCmdClearColorImage(ctx.cmd, r.image(w, ctx.historyWriteIndex).image.get(), VK_IMAGE_LAYOUT_GENERAL, &zero,
-                                     1, &all);
+        for (ResRef w : ctx.pass->writes) {
+            if (!cleared(w)) continue;
+            const bool source = w == ResRef(ImageId::sourceImage) || w == ResRef(ImageId::sourceExtinction);
+            const VkClearColorValue& value = source && ctx.poisonSource && !ctx.readBackVolumes ? poison : zero;
+            vkCmdClearColorImage(ctx.cmd, r.image(w, ctx.historyWriteIndex).image.get(), VK_IMAGE_LAYOUT_GENERAL, &value, 1,
+                                 &all);
+        }
         memoryBarrier(ctx.cmd, transfer, VK_ACCESS_TRANSFER_WRITE_BIT, compute,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     }
@@ -510,10 +521,15 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::FROXEL_GROUP_X),
                           groups(r.mediaExtent.y, shd::FROXEL_GROUP_Y), groups(r.mediaExtent.z, shd::FROXEL_GROUP_Z));
             break;
-        case Dispatch::MediaRuns:
-            vkCmdDispatch(ctx.cmd, groups(r.mediaExtent.x, shd::LIGHT_GROUP_X), groups(r.mediaExtent.y, shd::LIGHT_GROUP_Y),
-                          groups(r.mediaExtent.z, shd::LIGHT_RUN));
+        case Dispatch::RegionLightRuns: {
+            // The temporal region, not only the media region: its shell of media-free froxels gets S and
+            // sigma_t = 0 from the pass itself, where the frame used to clear the whole grid first
+            // (recordClearMedia; docs/performance.md, "shadowskip").
+            const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
+            pushRegion(ctx, r.temporalRegion);
+            vkCmdDispatch(ctx.cmd, groups(e.x, shd::LIGHT_GROUP_X), groups(e.y, shd::LIGHT_GROUP_Y), groups(e.z, shd::LIGHT_RUN));
             break;
+        }
         case Dispatch::RegionRuns: {
             const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
             vkCmdDispatch(ctx.cmd, groups(e.x, shd::TEMPORAL_GROUP_X), groups(e.y, shd::TEMPORAL_GROUP_Y),
@@ -605,6 +621,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
         ctx.readBackVolumes = readBackVolumes;
         ctx.poisonIntegrated = poisonIntegrated;
+        ctx.poisonSource = poisonSource;
         // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
         const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest) &&
                                 !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));

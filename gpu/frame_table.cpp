@@ -58,7 +58,7 @@ const std::array<PassDecl, 17> kPasses{{
     // Without vdb volumes (_media) it computes the media itself (VariantKey::inlineMedia). S and sigma_t
     // go out in 6 words, sourceImage (S, sigma_t.r) and sourceExtinction (sigma_t.gb).
     // Each column only down to its walk end (columnEnds): the froxels behind are never read.
-    {"light", "light", Variant::LightMedia, Dispatch::MediaRuns, When::Always, Record::Dispatch,
+    {"light", "light", Variant::LightMedia, Dispatch::RegionLightRuns, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       T::localShadowTexels, T::vdbGridTexels, T::influenceTexels, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
       T::columnEndTexels},

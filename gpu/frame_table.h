@@ -187,7 +187,8 @@ struct ResList {
 // How many invocations a compute pass runs (workgroup sizes: shaders/shared/types.h).
 enum class Dispatch : uint8_t {
     MediaFroxels, // one per froxel of the media region (FrameResources::mediaOrigin, mediaExtent), FROXEL_GROUP_*
-    MediaRuns,    // one per run of LIGHT_RUN froxels along z of the media region, LIGHT_GROUP_* (bindings.h)
+    RegionLightRuns,  // one per run of LIGHT_RUN froxels along z of the temporal region (pushed), LIGHT_GROUP_*
+                      // (bindings.h)
     RegionRuns,     // one per run of TEMPORAL_RUN froxels along z of the temporal region, TEMPORAL_GROUP_* (bindings.h)
     RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*

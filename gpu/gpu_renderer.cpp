@@ -97,6 +97,7 @@ Result<std::unique_ptr<GpuRenderer>> GpuRenderer::create(const GpuOptions& optio
     s->froxelRegions = options.froxelRegions;
     s->poisonShadowVolume = options.poisonShadowVolume;
     s->poisonIntegrated = options.poisonIntegrated;
+    s->poisonSource = options.poisonSource;
     s->skipHidden = options.skipHiddenFroxels;
     BRUME_TRY(s->createCommands());
     BRUME_TRY(s->createPasses());

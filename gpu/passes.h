@@ -26,6 +26,7 @@ struct PassContext {
     const VariantKey* variant = nullptr;     // this frame's shader variants
     bool readBackVolumes = false;            // the froxel volumes are read back after the frame
     bool poisonIntegrated = false;           // GpuOptions::poisonIntegrated (tests)
+    bool poisonSource = false;               // GpuOptions::poisonSource (tests)
     shd::DebugViewParams debugParams{};
     const std::vector<shd::GlowParams>* glow = nullptr;  // glow: one dispatch each
     glm::vec3 ambient{0.0f};    // geometry: sky radiance

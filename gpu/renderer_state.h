@@ -41,6 +41,7 @@ struct GpuRenderer::State {
     bool froxelRegions = true;           // GpuOptions::froxelRegions
     bool poisonShadowVolume = false;     // GpuOptions::poisonShadowVolume
     bool poisonIntegrated = false;       // GpuOptions::poisonIntegrated
+    bool poisonSource = false;           // GpuOptions::poisonSource
     bool skipHidden = true;              // GpuOptions::skipHiddenFroxels
     // A prepare that failed part-way (out of GPU memory) may have replaced resources without
     // rewriting the descriptors: the next prepare rewrites them all.

@@ -40,6 +40,9 @@
 layout(local_size_x = LIGHT_EXACT_GROUP) in;
 #else
 layout(local_size_x = LIGHT_GROUP_X, local_size_y = LIGHT_GROUP_Y, local_size_z = 1) in;
+// The froxels the pass computes, [lo, hi): the temporal region (core/media_region.h temporalFroxelRegion;
+// gpu/frame_executor.cpp Dispatch::RegionLightRuns).
+layout(push_constant) uniform RegionBlock { FroxelRegionParams lightRegion; };
 #include "column_entries.glsl"
 #include "balanced_groups.glsl"
 #endif
@@ -293,9 +296,11 @@ void main() {
     // The run's first froxel.
     // Workgroups interleaved between lavapipe's threads (balanced_groups.glsl): the deep runs cost
     // little where the frame skips hidden froxels.
+    // Over the temporal region (the push constants: the media region and its one-froxel shell): the
+    // shell's froxels have no media and get S = sigma_t = 0, which the temporal and integrate passes
+    // read there (the frame does not clear these images to 0 first; frame_executor.cpp recordClearMedia).
     uvec3 runID = balancedGlobalID();
-    ivec3 first = ivec3(runID.xy, int(runID.z) * LIGHT_RUN) +
-                  ivec3(frame.mediaOriginX, frame.mediaOriginY, frame.mediaOriginZ);
+    ivec3 first = ivec3(runID.xy, int(runID.z) * LIGHT_RUN) + lightRegion.lo.xyz;
     // The run is cut at the column's walk end (column_entries.glsl): the froxels behind are hidden
     // from every lookup, and the temporal pass's neighbourhood leaves them out.
     int end = currentColumnEnd(first.xy);

@@ -45,8 +45,9 @@ protected:
 
 // The shadow volume region tests' pair: a renderer over the froxel regions whose fog transmittance
 // volume is filled with NaN before every frame (GpuOptions::poisonShadowVolume), so that reading a
-// cell not written this frame shows, and one over the whole grid; both validated. Stops the test on
-// an error (check HasFatalFailure()).
+// cell not written this frame shows, and its S and sigma_t filled with 1 in frames that read no
+// volumes back (GpuOptions::poisonSource); and one over the whole grid; both validated. Stops the
+// test on an error (check HasFatalFailure()).
 struct PoisonedRegionAndWholeGrid {
     std::unique_ptr<gpu::GpuRenderer> region, whole;
 
@@ -54,11 +55,13 @@ struct PoisonedRegionAndWholeGrid {
         gpu::GpuOptions options;
         options.validation = true;
         options.poisonShadowVolume = true;
+        options.poisonSource = true;
         auto r = gpu::GpuRenderer::create(options);
         ASSERT_TRUE(r.ok()) << r.error().message;
         region = std::move(r.value());
         options.froxelRegions = false;
         options.poisonShadowVolume = false;
+        options.poisonSource = false;
         auto w = gpu::GpuRenderer::create(options);
         ASSERT_TRUE(w.ok()) << w.error().message;
         whole = std::move(w.value());

@@ -364,6 +364,40 @@ TEST(GpuTemporal, ShadowVolumeRegionWritesEveryCellItsReadersRead) {
     pair.expectNoValidationMessages();
 }
 
+// The light pass writes S and sigma_t over the whole temporal region, the media region's shell of
+// media-free froxels included (light_body.glsl), which is all the temporal and integrate passes read:
+// the frame no longer clears them to 0 first. The region renderer fills them with 1 before every
+// frame that reads no volumes back (GpuOptions::poisonSource); through a box at rest, moved, and the
+// camera orbiting, at `high` and `low`, its images equal the whole grid renderer's byte for byte.
+TEST(GpuTemporal, TheLightPassWritesEverySourceTheTemporalAndIntegratePassesRead) {
+    test::PoisonedRegionAndWholeGrid pair;
+    pair.create();
+    if (HasFatalFailure()) return;
+    for (Quality q : {Quality::High, Quality::Low}) {
+        RenderRequest req;
+        req.width = 160;
+        req.height = 90;
+        req.quality = q;
+        const std::vector<glm::vec3> places = {{-2.6f, 1.2f, -1.0f}, {-2.6f, 1.2f, -1.0f}, {2.6f, 1.2f, 0.0f}};
+        for (size_t n = 0; n < places.size() + 2; ++n) {
+            Scene s = regionScene(places[std::min(n, places.size() - 1)]);
+            if (n >= places.size()) s.camera = orbitCamera(s.camera, 6.0f * static_cast<float>(n + 1 - places.size()));
+            req.history = n == 0 ? HistoryMode::Restart : HistoryMode::Continue;
+            const std::string what = std::string(q == Quality::High ? "high" : "low") + " frame " + std::to_string(n);
+            auto g = pair.region->render(s, req);
+            ASSERT_TRUE(g.ok()) << g.error().message;
+            auto w = pair.whole->render(s, req);
+            ASSERT_TRUE(w.ok()) << w.error().message;
+            const Image& gi = g.value().image;
+            const Image& wi = w.value().image;
+            EXPECT_TRUE(brume::allFinite(gi)) << what;
+            ASSERT_EQ(gi.pixels.size(), wi.pixels.size());
+            EXPECT_EQ(std::memcmp(gi.pixels.data(), wi.pixels.data(), gi.pixels.size() * sizeof(glm::vec3)), 0) << what;
+        }
+    }
+    pair.expectNoValidationMessages();
+}
+
 namespace {
 
 bool ranPass(const GpuRender& r, const char* name) {
