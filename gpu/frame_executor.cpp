@@ -115,8 +115,17 @@ Result<void> GpuRenderer::State::ensureBuffer(Buffer& b, VkDeviceSize size, VkBu
 }
 
 // Usage and memory follow the table's kind.
-Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty) {
+Result<void> GpuRenderer::State::ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty, const char* what) {
     const BufferDecl& d = decl(id);
+    // Its readers go through its texel views (shared/frame_table.h), which address at most the device's
+    // maxTexelBufferElements texels (ensureTexelViews): past that they would read nothing, silently.
+    const uint32_t maxTexels = device->limits().maxTexelBufferElements;
+    for (const TexelViewDecl& v : kTexelViews)
+        if (v.buffer == id && (size + texelBytes(v.format) - 1) / texelBytes(v.format) > maxTexels)
+            return Error{std::string(what ? what : d.name) + " needs " +
+                         std::to_string((size + texelBytes(v.format) - 1) / texelBytes(v.format)) +
+                         " texels, more than this Vulkan device's texel buffers hold (" + std::to_string(maxTexels) +
+                         "); use a smaller image, fewer lights or a lower quality preset."};
     VkBufferUsageFlags usage = d.kind == BufferKind::UNIFORM ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
                                                              : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     Memory memory = hostWrites(d.kind) ? Memory::Upload : Memory::DeviceLocal;
@@ -326,7 +335,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(BufferId::influence,
                            sizeof(shd::InfluenceHeader) +
                                std::max<size_t>(cs.influence.samples.size(), 1) * sizeof(shd::InfluenceSample),
-                           dirty));
+                           dirty, "The influencers' samples"));
     bool vertexDirty = false;
     BRUME_TRY(ensureBuffer(res.vertices, std::max<size_t>(vertexBytes, 64), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                            Memory::Upload, "geometry vertices", vertexDirty));
@@ -352,13 +361,8 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     for (const DensityGridPtr& g : cs.grids) anyGrid = anyGrid || g != nullptr;
     const size_t entries = static_cast<size_t>(cells.x) * static_cast<size_t>(cells.y) * static_cast<size_t>(cells.z) *
                            std::max<size_t>(cs.lights.size(), 1) * (anyGrid ? 2 : 1);
-    // Its readers address it through the texel view shadowTexels (shared/frame_table.h).
-    if (entries > device->limits().maxTexelBufferElements)
-        return Error{"The fog transmittance volume needs " + std::to_string(entries) +
-                     " texels, more than this Vulkan device's texel buffers hold (" +
-                     std::to_string(device->limits().maxTexelBufferElements) +
-                     "); use fewer lights or a lower quality preset."};
-    BRUME_TRY(ensureBuffer(BufferId::shadowTransmittance, entries * sizeof(glm::vec4), dirty));
+    // Its readers address it through the texel view shadowTexels (ensureBuffer checks the device's limit).
+    BRUME_TRY(ensureBuffer(BufferId::shadowTransmittance, entries * sizeof(glm::vec4), dirty, "The fog transmittance volume"));
     BRUME_TRY(ensureVdbGrids(cs, dirty));
     // The light reach record follows the clusters (shared/clusters.h lightReachOffset).
     const glm::ivec3 c = shd::clusterDims(dims);
@@ -369,22 +373,24 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     static_assert(sizeof(shd::SunShadowFit) == 16 * shd::SUN_SHADOW_FIT_TEXELS);
     BRUME_TRY(ensureBuffer(BufferId::sunShadowMap, sizeof(shd::SunShadowFit) + std::max<size_t>((sunShadowBytes + 15) / 16 * 16, 16),
                            dirty));
-    BRUME_TRY(ensureBuffer(BufferId::localShadowMaps, std::max<size_t>(localShadowBytes, 4), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::localShadowMaps, std::max<size_t>(localShadowBytes, 4), dirty,
+                           "The point and spot lights' shadow maps"));
     const glm::ivec2 corners = shd::distantTableCorners(size);
     BRUME_TRY(ensureBuffer(BufferId::distantTable,
                            static_cast<size_t>(corners.x * corners.y) * shd::DISTANT_TABLE_DEPTHS * 2 * sizeof(glm::vec4), dirty));
     const glm::ivec2 tiles = shd::depthTileCount(size);
-    BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(glm::vec2), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::depthTiles, static_cast<size_t>(tiles.x * tiles.y) * sizeof(glm::vec2), dirty,
+                           "The image's depth tiles"));
     // This frame's and the previous frame's read entries and walk end of each froxel column
     // (column_entries.glsl).
     BRUME_TRY(ensureBuffer(BufferId::columnEnds,
-                           2 * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * sizeof(glm::ivec4), dirty));
+                           2 * static_cast<size_t>(dims.x) * static_cast<size_t>(dims.y) * sizeof(glm::ivec4), dirty,
+                           "The froxel grid's column ends"));
     const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
     // The composites read a list's tiles through its r32i texel view, past the header's texels.
     static_assert(sizeof(shd::ExactListHeader) == shd::TILE_LIST_HEADER_TEXELS * sizeof(int32_t));
-    BRUME_TRY(ensureBuffer(BufferId::nearTiles, tileList, dirty));
-    BRUME_TRY(ensureBuffer(BufferId::farTiles, tileList, dirty));
-    BRUME_TRY(ensureBuffer(BufferId::allFarTiles, tileList, dirty));
+    for (BufferId list : {BufferId::nearTiles, BufferId::farTiles, BufferId::allFarTiles})
+        BRUME_TRY(ensureBuffer(list, tileList, dirty, "The composite's tile lists"));
     BRUME_TRY(ensureTexelViews(dirty));
     if (dirty) {
         writeDescriptorBindings(*device, bindings.set, res);

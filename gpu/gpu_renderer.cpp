@@ -373,8 +373,11 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     // The clusters do not depend on the jitter: built once for every frame of this call.
     const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
-    // Voxelize and light run over the froxels that can hold media (core/media_region.h), rounded up
-    // to whole workgroups (the light pass's: runs along z): only those froxels' clusters are read.
+    // Voxelize runs over the froxels that can hold media (core/media_region.h). The light pass runs over
+    // the temporal region (the media region and its one-froxel shell, Dispatch::RegionLightRuns), but
+    // the shell's froxels have no media: their S is their emission, 0, whatever their lights and
+    // transmittance cells hold, so the reach and the cells follow the media region's froxels, rounded
+    // up to whole workgroups (the light pass's: runs along z).
     const FroxelRegion media = s_->froxelRegions ? mediaFroxelRegion(cs, frame) : FroxelRegion{glm::ivec3(0), dims};
     r.mediaOrigin = media.lo;
     r.mediaExtent = media.hi - media.lo;

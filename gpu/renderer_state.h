@@ -62,7 +62,9 @@ struct GpuRenderer::State {
     Result<void> createPasses();
     Result<void> ensureBuffer(Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
                               const char* name, bool& dirty);
-    Result<void> ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty);
+    // what: the buffer's contents in words for the error when a texel view of it could not address them
+    // (ensureBuffer checks every buffer that has views; shared/frame_table.h).
+    Result<void> ensureBuffer(BufferId id, VkDeviceSize size, bool& dirty, const char* what = nullptr);
     Result<void> parkSizedResources(glm::ivec3 dims, glm::ivec2 size, bool& dirty);
     Result<void> ensureFroxelImages(glm::ivec3 dims, bool media, bool& dirty);
     Result<void> ensureScreenImages(glm::ivec2 size, bool& dirty);

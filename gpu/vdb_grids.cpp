@@ -31,11 +31,14 @@ Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& d
         }
     Buffer& buffer = res[BufferId::vdbGrids];
     if (buffer.buffer && grids == res.vdbGridsUploaded) return {};
-    // One binding addresses the whole buffer; lavapipe allows 128 MiB (its maxStorageBufferRange).
-    const VkDeviceSize limit = device->limits().maxStorageBufferRange;
+    // One binding addresses the whole buffer, and the shaders read it through its r32i texel view
+    // (vdbGridTexels): the smaller of the two limits. Lavapipe: 128 MiB (its maxStorageBufferRange; its
+    // views address 2^27 words, 512 MiB).
+    const VkDeviceSize limit = std::min<VkDeviceSize>(device->limits().maxStorageBufferRange,
+                                                      VkDeviceSize(device->limits().maxTexelBufferElements) * 4);
     if (total > limit)
         return Error{"The scene's vdb grids take " + mib(total) + " as NanoVDB, more than the " + mib(limit) +
-                     " one GPU storage buffer can address on this device; use fewer or smaller grids.",
+                     " one GPU storage buffer and its texel view can address on this device; use fewer or smaller grids.",
                      /*badInput=*/true};
     const VkDeviceSize size = std::max<VkDeviceSize>(total, 32);
     if (!buffer.buffer || buffer.size != size) {

@@ -299,6 +299,8 @@ void main() {
     // Over the temporal region (the push constants: the media region and its one-froxel shell): the
     // shell's froxels have no media and get S = sigma_t = 0, which the temporal and integrate passes
     // read there (the frame does not clear these images to 0 first; frame_executor.cpp recordClearMedia).
+    // Their light terms are never used (lightBlock stores the emission alone where sigma_t = 0), so the
+    // lights and transmittance cells they read need not have been computed for them (gpu_renderer.cpp).
     uvec3 runID = balancedGlobalID();
     ivec3 first = ivec3(runID.xy, int(runID.z) * LIGHT_RUN) + lightRegion.lo.xyz;
     // The run is cut at the column's walk end (column_entries.glsl): the froxels behind are hidden

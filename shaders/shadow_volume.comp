@@ -28,15 +28,8 @@ void main() {
     // early return costs the body under a mask): adjacent cell columns end at similar depths.
     int end = min(region.hi.z, shadowCellEnd(first.xy, frame.shadowReduction, cells.z));
     if (any(greaterThanEqual(first, ivec3(region.hi.xy, end)))) return;
-    int light = region.lo.w;
-    LightData l = lightAt(light);
+    LightData l = lightAt(region.lo.w);
     FogVolumes volumes = fogVolumes();  // fetched once for the run (fog_shadow.glsl)
-    for (int z = first.z; z < min(first.z + SHADOW_RUN, end); ++z) {
-        ivec3 cell = ivec3(first.xy, z);
-        ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
-        vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
-        LightSample ls = evalLight(l, p);
-        shadowTransmittance[shadowVolumeIndex(cells, light, cell)] =
-            vec4(lightFogTransmittance(volumes, l, p, ls.toLight, ls.distance), 0.0f);
-    }
+    for (int z = first.z; z < min(first.z + SHADOW_RUN, end); ++z)
+        writeAnalyticShadowCell(l, volumes, cells, ivec3(first.xy, z));
 }

@@ -28,13 +28,9 @@ void main() {
     FogVolumes volumes = fogVolumes();  // fetched once for the run (fog_shadow.glsl)
     for (int z = first.z; z < min(first.z + SHADOW_RUN, region.hi.z); ++z) {
         ivec3 cell = ivec3(first.xy, z);
-        ivec3 froxel = shadowCellFroxel(cell, frame.froxelDims.xyz, frame.shadowReduction);
-        vec3 p = worldFromFroxelCoord(vec3(froxel) + frame.jitter.xyz, frame);
-        LightSample ls = evalLight(l, p);
-        shadowTransmittance[shadowVolumeIndex(cells, light, cell)] =
-            vec4(lightFogTransmittance(volumes, l, p, ls.toLight, ls.distance), 0.0f);
+        ShadowCellRay r = writeAnalyticShadowCell(l, volumes, cells, cell);
         if (frame.vdbShadowSamples > 0)
             shadowTransmittance[shadowVolumeIndex(cells, vdbShadowLayer(light, frame.counts.w), cell)] =
-                vec4(vdbFogOpticalDepth(l, p, ls.toLight, ls.distance), 0.0f);
+                vec4(vdbFogOpticalDepth(l, r.p, r.ls.toLight, r.ls.distance), 0.0f);
     }
 }
