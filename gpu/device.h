@@ -42,9 +42,9 @@ struct GpuOptions {
     // Tests only: each frame first fills the fog transmittance volume with NaN, so that a reader of a
     // cell the shadow volume pass did not write this frame shows in the image (tests/test_gpu_temporal.cpp).
     bool poisonShadowVolume = false;
-    // Tests only: each frame whose integrate pass covers the whole grid first fills the integrated
-    // scattering with NaN, so that a lookup of an entry the integrate pass did not store this frame
-    // (it stores only those some pixel or the glow can read: shaders/integrate.comp) shows in the image.
+    // Tests only: each frame first fills the integrated scattering with NaN, so that a lookup of an
+    // entry the integrate pass did not store this frame (it stores only those some pixel or the glow
+    // can read, in the columns they look up: shaders/integrate.comp) shows in the image.
     bool poisonIntegrated = false;
     // Tests only: each frame whose media region is not the whole grid first fills S and sigma_t (sourceImage,
     // sourceExtinction) with 1 (a finite value: the temporal resolve replaces a non-finite sample, so NaN

@@ -542,9 +542,9 @@ void dispatchPass(const PassContext& ctx) {
                           groups(e.z, shd::TEMPORAL_RUN));
             break;
         }
-        case Dispatch::RegionColumns: {
-            const glm::ivec3 e = r.temporalRegion.empty() ? glm::ivec3(0) : r.temporalRegion.hi - r.temporalRegion.lo;
-            vkCmdDispatch(ctx.cmd, groups(e.x, shd::INTEGRATE_GROUP_X), groups(e.y, shd::INTEGRATE_GROUP_Y), 1);
+        case Dispatch::IntegrateColumns: {
+            const glm::ivec4 c = integrateColumns(ctx);
+            vkCmdDispatch(ctx.cmd, groups(c.z - c.x, shd::INTEGRATE_GROUP_X), groups(c.w - c.y, shd::INTEGRATE_GROUP_Y), 1);
             break;
         }
         case Dispatch::ExactFroxels:

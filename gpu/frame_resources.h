@@ -60,6 +60,7 @@ struct FrameResources {
     // others get sceneColor copied (frame_executor.cpp recordComposite).
     glm::ivec2 compositeLo{0};
     glm::ivec2 compositeHi{0};
+    int froxelTile = 1;  // pixels per froxel column (FrameUniforms.froxelDims.w)
     // Height or depth fog past the froxel far this frame (SPEC_DISTANT_FOG): the composite dispatches
     // over the nearTiles list (compositeLo, compositeHi then the whole screen), the composite far and
     // all far over farTiles and allFarTiles (shaders/tile_lists.comp). Without it the depth tiles, distant fog and tile lists passes

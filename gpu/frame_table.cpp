@@ -80,7 +80,7 @@ const std::array<PassDecl, 17> kPasses{{
     // At rest (_rest) it first resolves each froxel with its own history, writing the history's output
     // as the temporal pass would have. The resolved S and sigma_t are read from the history's output
     // from here on (glow, debug view, readback): in motion the temporal pass wrote them there too.
-    {"integrate", "integrate", Variant::Temporal, Dispatch::RegionColumns, When::Always, Record::Integrate,
+    {"integrate", "integrate", Variant::Temporal, Dispatch::IntegrateColumns, When::Always, Record::Integrate,
      {B::frame, T::columnEndTexels, I::sourceImage, I::sourceExtinction, historyIn(H::historySource), historyIn(H::historyExtinction),
       historyOut(H::historySource), historyOut(H::historyExtinction)},
      {I::integratedScattering, I::integratedTransmittance, historyOut(H::historySource), historyOut(H::historyExtinction)}},

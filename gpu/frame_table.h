@@ -190,7 +190,7 @@ enum class Dispatch : uint8_t {
     RegionLightRuns,  // one per run of LIGHT_RUN froxels along z of the temporal region (pushed), LIGHT_GROUP_*
                       // (bindings.h)
     RegionRuns,     // one per run of TEMPORAL_RUN froxels along z of the temporal region, TEMPORAL_GROUP_* (bindings.h)
-    RegionColumns,  // one per froxel column of the temporal region, INTEGRATE_GROUP_*
+    IntegrateColumns,  // one per froxel column of integrateColumns (passes.h), INTEGRATE_GROUP_*
     Columns,      // one per froxel column, INTEGRATE_GROUP_*
     Screen,       // one per pixel, SCREEN_GROUP_*
     CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*;

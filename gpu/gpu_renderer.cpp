@@ -439,6 +439,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         r.temporalRegion = temporalFroxelRegion(media, dims);
         r.distantFog = s_->spec[SpecId::SPEC_DISTANT_FOG] != 0;
         std::tie(r.compositeLo, r.compositeHi) = compositePixels(r.temporalRegion, size, frame.froxelDims.w, r.distantFog);
+        r.froxelTile = frame.froxelDims.w;
         FroxelRegion& written = r.historyWritten[static_cast<size_t>(t.writeIndex)];
         r.clearHistoryOut = !regionContains(r.temporalRegion, written);
         written = FroxelRegion{glm::ivec3(0), dims};  // unknown until the frame has run

@@ -1,6 +1,7 @@
 // Temporal pass (shaders/temporal.comp; rule in shaders/shared/temporal.h; reads and writes in
-// frame_table.cpp) and integrate pass, both over the temporal region (core/media_region.h
-// temporalFroxelRegion); what a pass over the whole grid would write outside it is written by clears.
+// frame_table.cpp) over the temporal region (core/media_region.h temporalFroxelRegion), what a pass
+// over the whole grid would write outside it written by clears; integrate pass, integrating the
+// region's columns and storing the empty entries of the others itself (shaders/integrate.comp).
 // The resolved S and sigma_t live in the history's *_OUT side, where integrate, glow, debug view and
 // readback read them: in motion the temporal pass writes them there; at rest it only clears, and
 // integrate_rest resolves and writes them.
@@ -19,10 +20,6 @@ namespace {
 
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 constexpr VkPipelineStageFlags kTransfer = VK_PIPELINE_STAGE_TRANSFER_BIT;
-
-bool wholeGrid(const FrameResources& r) {
-    return r.temporalRegion.lo == glm::ivec3(0) && r.temporalRegion.hi == r.froxelDims;
-}
 
 struct Clear {
     VkImage image;
@@ -77,7 +74,10 @@ void recordTemporal(const PassContext& ctx) {
 
 void recordIntegrate(const PassContext& ctx) {
     const FrameResources& r = *ctx.res;
-    if (wholeGrid(r) && ctx.poisonIntegrated) {
+    // No clear: the pass runs over every column and stores every entry that a lookup or the glow reads,
+    // scattering 0 and transmittance 1 in front of the temporal region and outside its columns
+    // (integrate.comp).
+    if (ctx.poisonIntegrated) {
         // Tests: an entry the pass leaves unstored reads NaN scattering (GpuOptions::poisonIntegrated).
         VkClearColorValue nan{};
         nan.float32[0] = nan.float32[1] = nan.float32[2] = std::numeric_limits<float>::quiet_NaN();
@@ -85,16 +85,41 @@ void recordIntegrate(const PassContext& ctx) {
         half.float32[0] = half.float32[1] = half.float32[2] = 0.5f;
         clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), nan},
                               {r[ImageId::integratedTransmittance].image.get(), half}});
-    } else if (!wholeGrid(r)) {
-        // Empty froxels integrate to scattering 0 and transmittance 1 (alpha 0, as the shader writes).
-        VkClearColorValue one{};
-        one.float32[0] = one.float32[1] = one.float32[2] = 1.0f;
-        clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), VkClearColorValue{}},
-                              {r[ImageId::integratedTransmittance].image.get(), one}});
     }
     const glm::ivec2 everywhere = storedEverywhere(ctx);
-    pushRegion(ctx, r.temporalRegion, everywhere.x, everywhere.y);
+    const shd::IntegrateParams p{{glm::ivec4(r.temporalRegion.lo, everywhere.x), glm::ivec4(r.temporalRegion.hi, everywhere.y)},
+                                 integrateColumns(ctx)};
+    vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
     dispatchPass(ctx);
+}
+
+glm::ivec4 integrateColumns(const PassContext& ctx) {
+    const FrameResources& r = *ctx.res;
+    const glm::ivec2 dims(r.froxelDims);
+    const glm::ivec4 all(0, 0, dims);
+    if (ctx.readBackVolumes || ctx.debugParams.view.x != shd::DEBUG_VIEW_FINAL || r.distantFog) return all;
+    glm::ivec2 lo = dims, hi(0);
+    auto add = [&](glm::ivec2 a, glm::ivec2 b) {
+        a = glm::max(a, glm::ivec2(0)), b = glm::min(b, dims);
+        if (glm::any(glm::lessThanEqual(b, a))) return;
+        lo = glm::min(lo, a), hi = glm::max(hi, b);
+    };
+    // Pixel x's lookups read columns floor((x + 0.5) / tile - 0.5) and the next (shared/froxel.h
+    // integratedLookup, clamped to the grid): for the pixels [a, b], the columns from a's first to b's
+    // second, with a column more on each side should the shader's division round the other way at a
+    // column's edge.
+    const float tile = static_cast<float>(r.froxelTile);
+    auto addPixels = [&](glm::ivec2 a, glm::ivec2 b) {
+        auto first = [&](glm::ivec2 p) { return glm::ivec2(glm::floor((glm::vec2(p) + 0.5f) / tile - 0.5f)); };
+        add(first(a) - 1, first(b) + 3);
+    };
+    // The composite's pixels (gpu_renderer.cpp compositePixels) and each glow's rectangle.
+    if (r.compositeHi.x > r.compositeLo.x && r.compositeHi.y > r.compositeLo.y) addPixels(r.compositeLo, r.compositeHi - 1);
+    if (ctx.glow) {
+        for (const shd::GlowParams& g : *ctx.glow)
+            if (g.rect.z >= g.rect.x && g.rect.w >= g.rect.y) addPixels(glm::ivec2(g.rect.x, g.rect.y), glm::ivec2(g.rect.z, g.rect.w));
+    }
+    return glm::any(glm::lessThanEqual(hi, lo)) ? glm::ivec4(0) : glm::ivec4(lo, hi);
 }
 
 void recordColumnEnds(const PassContext& ctx) {

@@ -86,10 +86,17 @@ private:
 // dispatch over the region. The later passes read the resolved values from the history's output.
 void recordTemporal(const PassContext& ctx);
 
-// Integrate (Record::Integrate): when the temporal region is not the whole grid, the integrated
-// volumes cleared to what empty froxels integrate to (scattering 0, transmittance 1), then the
-// dispatch over the region's columns.
+// Integrate (Record::Integrate): the temporal region and integrateColumns pushed, then the dispatch
+// over those columns. The region's columns integrate; the stored entries in front of it and in the
+// other columns get what empty froxels integrate to (scattering 0, transmittance 1) from the pass
+// itself, not from a clear of both volumes over the whole grid (shaders/integrate.comp).
 void recordIntegrate(const PassContext& ctx);
+
+// The columns [xy, zw) whose integrated entries a reader looks up this frame: every column for the
+// read-back volumes, the debug views and a composite over every pixel (distant fog); else the
+// temporal region's with a column of margin (the composite) and those around each glow's rectangle.
+// Empty (all 0) when nothing is looked up.
+glm::ivec4 integrateColumns(const PassContext& ctx);
 
 // The integrated entries stored in every column (pushed as lo.w .. hi.w to integrate and column ends): all
 // of them for the read-back volumes and the debug views, else the span of the glows' entries (empty:

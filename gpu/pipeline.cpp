@@ -34,7 +34,8 @@ Result<DescriptorBindings> createDescriptorBindings(const Device& device) {
     // parameters; the other passes ignore them.
     return createDescriptorSet(device, bindings,
                                static_cast<uint32_t>(std::max({sizeof(shd::DebugViewParams), sizeof(shd::GlowParams),
-                                                               sizeof(shd::FroxelRegionParams)})),
+                                                               sizeof(shd::FroxelRegionParams),
+                                                               sizeof(shd::IntegrateParams)})),
                                "froxel");
 }
 

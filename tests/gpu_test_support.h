@@ -21,7 +21,7 @@ inline Image asImage(const std::vector<glm::vec4>& v) {
 }
 
 // A fresh renderer with the validation layer on for every test; any message it reports fails the
-// test. Its integrated scattering is NaN before each whole-grid frame (GpuOptions::poisonIntegrated),
+// test. Its integrated scattering is NaN before each frame (GpuOptions::poisonIntegrated),
 // so an image that reads an entry the integrate pass did not store is not finite and fails its
 // test. Fixtures that set up more call ValidatedGpuTest::SetUp() first and stop on HasFatalFailure().
 class ValidatedGpuTest : public ::testing::Test {

@@ -53,12 +53,20 @@ BRUME_CONST int SHADOW_RUN = 16;
 
 // The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis
 // (core/media_region.h temporalFroxelRegion; w unused). The rest of the grid is known without them:
-// the frame clears it (gpu/pass_temporal.cpp). The shadow volume pass's: the cells it computes in
-// one listed light's layer (core/media_region.h shadowCellRegion), the light in lo.w; the others are
-// never read.
+// the frame clears it, or the integrate pass stores it (gpu/pass_temporal.cpp). The shadow volume
+// pass's: the cells it computes in one listed light's layer (core/media_region.h shadowCellRegion),
+// the light in lo.w; the others are never read.
 struct FroxelRegionParams {
     ivec4 lo;
     ivec4 hi;
+};
+
+// The integrate pass's: the temporal region (lo.w .. hi.w: the entries stored in every column), and
+// the columns it runs over, [columns.xy, columns.zw): those some reader looks up this frame
+// (gpu/pass_temporal.cpp integrateColumns).
+struct IntegrateParams {
+    FroxelRegionParams region;
+    ivec4 columns;
 };
 
 BRUME_NAMESPACE_END
