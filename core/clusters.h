@@ -1,6 +1,6 @@
 // Clustered light culling (shaders/shared/clusters.h has the layout and limits; docs/gpu.md
 // "Light clusters"): per cluster of froxels, the lights whose range window and spot cone can reach
-// one of its froxels' sample points. Conservative and cheap: a light is listed when its range
+// one of its froxels' sample points and some volume's bounds (elsewhere a light's term is 0). Conservative and cheap: a light is listed when its range
 // sphere meets the axis-aligned box around the cluster's corners and its cone meets the sphere
 // around that box; directional lights are listed everywhere; lights with fog_scale 0 or no
 // intensity nowhere. Both froxel renderers' light passes loop over these lists only.

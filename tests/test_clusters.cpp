@@ -174,6 +174,43 @@ TEST(LightClusters, CulledImageEqualsUnculled) {
     EXPECT_EQ(culled.image.pixels, all.image.pixels);
 }
 
+// A light whose range reaches froxels but no volume's bounds lights no froxel that has media: it is
+// listed in no cluster (target 4's dark lights: one test per volume, not one per cluster), and the
+// image keeps its bits.
+TEST(LightClusters, LightsThatReachNoVolumeAreListedNowhere) {
+    Scene s = clusterScene();
+    s.volumes = {test::boxFog({0.0f, 1.0f, -3.0f}, {1.0f, 1.0f, 1.0f}, 0.2f, 0.5f, 0.02f)};
+    s.lights = {point({-2.0f, 0.5f, 0.0f}, 1.5f),    // 2.9 m from the box: dark
+                point({0.0f, 1.0f, -1.5f}, 2.0f)};  // reaches it
+    const CompiledScene cs = compileScene(s);
+    const LightClusters c = buildLightClusters(cs, frameOf(s, cs));
+    auto listings = [](const LightClusters& lc, int light) {
+        int n = 0;
+        for (size_t i = 0; i < lc.records.size(); i += shd::CLUSTER_STRIDE) {
+            const int* r = &lc.records[i];
+            n += static_cast<int>(std::count(r + 1, r + 1 + r[0], light));
+        }
+        return n;
+    };
+    EXPECT_EQ(listings(c, 0), 0) << "a light that reaches no volume is listed";
+    EXPECT_GT(listings(c, 1), 0);
+    // With unbounded fog the same light reaches froxels that have media: listed, so the test above
+    // measures the volumes' bounds, not a light outside the grid.
+    Scene fogged = s;
+    fogged.volumes = clusterScene().volumes;
+    const CompiledScene csFogged = compileScene(fogged);
+    EXPECT_GT(listings(buildLightClusters(csFogged, frameOf(fogged, csFogged)), 0), 0);
+    RenderRequest r;
+    r.width = kWidth;
+    r.height = kHeight;
+    r.threads = 2;
+    const FroxelResult culled = renderFroxelCpu(s, r);
+    r.lightCulling = false;
+    const FroxelResult all = renderFroxelCpu(s, r);
+    EXPECT_EQ(culled.volumes.source, all.volumes.source);
+    EXPECT_EQ(culled.image.pixels, all.image.pixels);
+}
+
 TEST(LightClusters, OverfullClustersLoopOverEveryLight) {
     Scene s = clusterScene();
     // More unbounded lights than a cluster lists: every cluster falls back to the full loop.
