@@ -244,6 +244,14 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
             list |= BRUME_SPEC_VOLUME_LIST_ENTRY(static_cast<int>(i), cs.volumes[i].kind.x);
         k[SpecId::SPEC_VOLUME_COUNT] = static_cast<int>(cs.volumes.size());
         k[SpecId::SPEC_VOLUME_LIST] = list;
+        // Each box-kind volume's shape and falloff (shared/shadows.h shadowDensityLengthListed).
+        int shapes = 0;
+        for (size_t i = 0; i < cs.volumes.size(); ++i) {
+            const shd::VolumeData& v = cs.volumes[i];
+            if (v.kind.x == shd::VOLUME_BOX)
+                shapes |= BRUME_SPEC_SHAPE_ENTRY(static_cast<int>(i), shd::boxShape(v), v.params.z > 0.0f);
+        }
+        k[SpecId::SPEC_SHAPE_LIST] = shapes;
     }
     return k;
 }

@@ -38,7 +38,8 @@ vec3 lightFogTransmittance(FogVolumes vs, LightData l, vec3 p, vec3 toLight, flo
         // Unrolled by hand with each volume's kind a constant: only that kind's closed form is
         // built for it (a loop would run every kind's code for every volume on lavapipe).
 #define BRUME_LISTED_VOLUME(i) \
-    if (BRUME_SPEC_VOLUME_LISTED(i)) tau += shadowOpticalDepthOfKind(listedVolumeKind(i), vs.v##i, p, toLight, distance);
+    if (BRUME_SPEC_VOLUME_LISTED(i))   \
+        tau += shadowOpticalDepthListed(listedVolumeKind(i), BRUME_SPEC_LISTED_SHAPE(i), vs.v##i, p, toLight, distance);
         BRUME_EACH_LISTED_VOLUME(BRUME_LISTED_VOLUME)
 #undef BRUME_LISTED_VOLUME
     } else {

@@ -173,11 +173,14 @@ BRUME_FUNC vec2 shapeInterval(int shape, vec3 o, vec3 d, float h) {
 }
 
 // One node of shapeFadedPiece's quadrature: x in [-1, 1] on the piece, weight its weight.
-BRUME_FUNC float shapeFadedNode(VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float mid, float halfLen, float x,
-                                float weight) {
+// shape: the volume's SHAPE_*; falloff false: its height factor is 1 (height_falloff 0, where the
+// exp would give exactly 1), left out.
+BRUME_FUNC float shapeFadedNode(int shape, bool falloff, VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float mid,
+                                float halfLen, float x, float weight) {
     float s = mid + halfLen * x;
-    float u = shapeDistance(boxShape(v), (lo + ld * s) * 2.0f);
+    float u = shapeDistance(shape, (lo + ld * s) * 2.0f);
     float density = u < 1.0f ? edgeFade(u, v.params.x) : 0.0f;
+    if (!falloff) return weight * density;
     return weight * density * exp(-v.params.z * max(y0 + dy * s - v.params.w, 0.0f));
 }
 
@@ -185,14 +188,15 @@ BRUME_FUNC float shapeFadedNode(VolumeData v, vec3 lo, vec3 ld, float y0, float 
 // height of o and its rate along the ray). The nodes written out, not a loop over constant arrays:
 // the compiler kept such a loop and its arrays, which lavapipe ran lane by lane (docs/performance.md,
 // "pixel, round seven": the glow's quadrature).
-BRUME_FUNC float shapeFadedPiece(VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float s0, float s1) {
+BRUME_FUNC float shapeFadedPiece(int shape, bool falloff, VolumeData v, vec3 lo, vec3 ld, float y0, float dy, float s0,
+                                 float s1) {
     float halfLen = 0.5f * (s1 - s0);
     float mid = 0.5f * (s0 + s1);
     float sum = 0.0f;
-    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, -0.8611363115940526f, 0.3478548451374538f);
-    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, -0.3399810435848563f, 0.6521451548625461f);
-    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, 0.3399810435848563f, 0.6521451548625461f);
-    sum += shapeFadedNode(v, lo, ld, y0, dy, mid, halfLen, 0.8611363115940526f, 0.3478548451374538f);
+    sum += shapeFadedNode(shape, falloff, v, lo, ld, y0, dy, mid, halfLen, -0.8611363115940526f, 0.3478548451374538f);
+    sum += shapeFadedNode(shape, falloff, v, lo, ld, y0, dy, mid, halfLen, -0.3399810435848563f, 0.6521451548625461f);
+    sum += shapeFadedNode(shape, falloff, v, lo, ld, y0, dy, mid, halfLen, 0.3399810435848563f, 0.6521451548625461f);
+    sum += shapeFadedNode(shape, falloff, v, lo, ld, y0, dy, mid, halfLen, 0.8611363115940526f, 0.3478548451374538f);
     return sum * halfLen;
 }
 
@@ -210,8 +214,9 @@ BRUME_FUNC float chordCut(float s, vec2 chord) { return s > chord.x ? min(s, cho
 // a kink: the inner shape's boundary (the fade begins) and, for a cylinder, where |q.xz| = |q.y|
 // (the side's fade meets the cap's); the five pieces between the sorted cuts are integrated by
 // Gauss-Legendre. A box's own kinks (six axis pairs) are not cut: its faded pieces err more.
-BRUME_FUNC float shapeDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
-    int shape = boxShape(v);
+// shape, falloff: the volume's (shapeDensityLength reads them; a specialized pipeline passes constants:
+// shadowDensityLengthListed).
+BRUME_FUNC float shapeDensityLengthOf(int shape, bool falloff, VolumeData v, vec3 o, vec3 d, float maxDist) {
     vec3 lo = vec3(v.localFromWorld * vec4(o, 1.0f));
     vec3 ld = vec3(v.localFromWorld * vec4(d, 0.0f));
     vec2 raw = shapeInterval(shape, lo, ld, 0.5f);
@@ -240,9 +245,14 @@ BRUME_FUNC float shapeDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist)
     t = sortedPair(c[0], c[2]); c[0] = t.x; c[2] = t.y;
     t = sortedPair(c[1], c[3]); c[1] = t.x; c[3] = t.y;
     t = sortedPair(c[1], c[2]); c[1] = t.x; c[2] = t.y;
-    float total = shapeFadedPiece(v, lo, ld, o.y, d.y, chord.x, c[0]);
-    for (int i = 0; i < 3; ++i) total += shapeFadedPiece(v, lo, ld, o.y, d.y, c[i], c[i + 1]);
-    return total + shapeFadedPiece(v, lo, ld, o.y, d.y, c[3], chord.y);
+    float total = shapeFadedPiece(shape, falloff, v, lo, ld, o.y, d.y, chord.x, c[0]);
+    for (int i = 0; i < 3; ++i) total += shapeFadedPiece(shape, falloff, v, lo, ld, o.y, d.y, c[i], c[i + 1]);
+    return total + shapeFadedPiece(shape, falloff, v, lo, ld, o.y, d.y, c[3], chord.y);
+}
+
+// The falloff's exp is evaluated whatever its value here: exp(-0 x) is exactly 1.
+BRUME_FUNC float shapeDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
+    return shapeDensityLengthOf(boxShape(v), true, v, o, d, maxDist);
 }
 
 // Integral of one volume's density from p along unit dir over [0, maxDist] (BRUME_HUGE: to
@@ -264,6 +274,30 @@ BRUME_FUNC float shadowDensityLengthOfKind(int k, VolumeData v, vec3 p, vec3 dir
         return heightLinearLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
     return 0.0f;
 }
+
+#ifndef __cplusplus
+// shadowDensityLengthOfKind for listed volume slot `entry`'s SPEC_SHAPE_LIST entry (shape | 4 with a
+// falloff; -1: not specialized): a box-kind volume builds its own shape's integral only, and either the
+// box's closed form or the sampled integral (shadowDensityLengthOfKind builds both in the _shapes
+// variants, the choice made per volume at run time). The same function of the same values.
+BRUME_FUNC float shadowDensityLengthListed(int k, int entry, VolumeData v, vec3 p, vec3 dir, float maxDist) {
+#ifdef BRUME_LOCAL_SHAPES
+    if (entry >= 0 && BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) {
+        int shape = entry & 3;
+        bool falloff = (entry & 4) != 0;
+        if (shape != SHAPE_BOX || falloff) return shapeDensityLengthOf(shape, falloff, v, p, dir, maxDist);
+        return boxDensityLength(v, p, dir, maxDist);
+    }
+#endif
+    return shadowDensityLengthOfKind(k, v, p, dir, maxDist);
+}
+
+BRUME_FUNC vec3 shadowOpticalDepthListed(int k, int entry, VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    float len = shadowDensityLengthListed(k, entry, v, p, dir, maxDist);
+    if (len <= 0.0f) return vec3(0.0f);
+    return (vec3(v.sigmaS_g) + vec3(v.sigmaA)) * len;
+}
+#endif
 
 // Optical depth of one volume toward a light (sigma_t x density length); sum over volumes, then
 // exp(-sum) is the transmittance. Finite or +inf, never NaN.

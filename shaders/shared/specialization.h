@@ -22,13 +22,19 @@
     X(SPEC_SHADOW_REDUCTION, 10, 0)    /* frame.shadowReduction (the light pass's cell levels); 0: read it */ \
     X(SPEC_EMISSION, 11, 1)            /* 0: no volume emits: no mediaEmission store or load */ \
     X(SPEC_GREY_FOG_SHADOWS, 12, 0)    /* 1: every volume's sigma_s + sigma_a is grey: one exp per light */ \
-    X(SPEC_SPOT_LIGHTS, 13, 1)         /* 0: no spot light: evalLightNear's cone is left out */
+    X(SPEC_SPOT_LIGHTS, 13, 1)         /* 0: no spot light: evalLightNear's cone is left out */ \
+    X(SPEC_SHAPE_LIST, 14, -1)         /* box-kind shape and falloff of volume i in bits 3i..3i+2; -1: read them */
 
 // Scenes with at most this many volumes get each volume's kind as a constant (SPEC_VOLUME_LIST):
 // volume i's VOLUME_* (0..4) in 3 bits, packed and unpacked by these two macros on both sides.
 #define SPEC_MAX_LISTED_VOLUMES 10
 #define BRUME_SPEC_VOLUME_LIST_ENTRY(i, kind) ((kind) << (3 * (i)))
 #define BRUME_SPEC_LISTED_KIND(list, i) (((list) >> (3 * (i))) & 7)
+// With the list, each box-kind volume's shape (SHAPE_*, bits 3i..3i+1) and whether it has a height
+// falloff (bit 3i + 2) as a constant too (SPEC_SHAPE_LIST): the fog shadow's closed form then builds
+// that shape's intervals and distances only, and the box's closed form or the sampled integral, not
+// both (shared/shadows.h shadowDensityLengthListed). 0 for the other kinds.
+#define BRUME_SPEC_SHAPE_ENTRY(i, shape, falloff) (((shape) | ((falloff) ? 4 : 0)) << (3 * (i)))
 // M(0) ... M(SPEC_MAX_LISTED_VOLUMES - 1): the shaders' loops over the listed volumes, unrolled so that
 // each volume's index, and so its kind, is a constant (fog_shadow.glsl, voxelize_body.glsl,
 // distant_fog.comp; each body tests BRUME_SPEC_VOLUME_LISTED(i)).
@@ -53,6 +59,8 @@ BRUME_SPEC_CONSTANTS(BRUME_GLSL_SPEC_CONSTANT)
 // culled (a constant once specialized; the bodies of the unrolled loops test it).
 #define BRUME_SPEC_VOLUME_LISTED(i) \
     ((i) < SPEC_VOLUME_COUNT && BRUME_SPEC_LISTED_KIND(SPEC_VOLUME_LIST, i) != SPEC_CULLED_VOLUME)
+// Slot i's SPEC_SHAPE_LIST entry (shape | 4 with a falloff), or -1 where the pipeline reads them.
+#define BRUME_SPEC_LISTED_SHAPE(i) (SPEC_SHAPE_LIST < 0 ? -1 : ((SPEC_SHAPE_LIST >> (3 * (i))) & 7))
 #endif
 
 #endif
