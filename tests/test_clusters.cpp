@@ -66,6 +66,20 @@ bool listed(const LightClusters& c, ivec3 froxel, ivec3 dims, int light) {
     return std::find(r + 1, r + 1 + r[0], light) != r + 1 + r[0];
 }
 
+// The CPU froxel renderer's S and image with the clusters and with every light in every cluster:
+// culled lights contribute exactly 0 and the loop order is kept, so the same bits.
+void expectCulledEqualsUnculled(const Scene& s) {
+    RenderRequest r;
+    r.width = kWidth;
+    r.height = kHeight;
+    r.threads = 2;
+    const FroxelResult culled = renderFroxelCpu(s, r);
+    r.lightCulling = false;
+    const FroxelResult all = renderFroxelCpu(s, r);
+    EXPECT_EQ(culled.volumes.source, all.volumes.source);
+    EXPECT_EQ(culled.image.pixels, all.image.pixels);
+}
+
 // Lights that light each froxel at any of these sample positions (the jitter's extremes and centre).
 constexpr float kJitters[] = {0.0f, 0.5f, 0.999f};
 
@@ -160,19 +174,7 @@ TEST(LightClusters, LightsThatCannotReachAreAbsent) {
     }
 }
 
-TEST(LightClusters, CulledImageEqualsUnculled) {
-    const Scene s = clusterScene();
-    RenderRequest r;
-    r.width = kWidth;
-    r.height = kHeight;
-    r.threads = 2;
-    const FroxelResult culled = renderFroxelCpu(s, r);
-    r.lightCulling = false;
-    const FroxelResult all = renderFroxelCpu(s, r);
-    // Culled lights contribute exactly 0 and the loop order is kept: the same bits.
-    EXPECT_EQ(culled.volumes.source, all.volumes.source);
-    EXPECT_EQ(culled.image.pixels, all.image.pixels);
-}
+TEST(LightClusters, CulledImageEqualsUnculled) { expectCulledEqualsUnculled(clusterScene()); }
 
 // A light whose range reaches froxels but no volume's bounds lights no froxel that has media: it is
 // listed in no cluster (target 4's dark lights: one test per volume, not one per cluster), and the
@@ -200,15 +202,7 @@ TEST(LightClusters, LightsThatReachNoVolumeAreListedNowhere) {
     fogged.volumes = clusterScene().volumes;
     const CompiledScene csFogged = compileScene(fogged);
     EXPECT_GT(listings(buildLightClusters(csFogged, frameOf(fogged, csFogged)), 0), 0);
-    RenderRequest r;
-    r.width = kWidth;
-    r.height = kHeight;
-    r.threads = 2;
-    const FroxelResult culled = renderFroxelCpu(s, r);
-    r.lightCulling = false;
-    const FroxelResult all = renderFroxelCpu(s, r);
-    EXPECT_EQ(culled.volumes.source, all.volumes.source);
-    EXPECT_EQ(culled.image.pixels, all.image.pixels);
+    expectCulledEqualsUnculled(s);
 }
 
 TEST(LightClusters, OverfullClustersLoopOverEveryLight) {
