@@ -543,7 +543,11 @@ void dispatchPass(const PassContext& ctx) {
             break;
         }
         case Dispatch::IntegrateColumns: {
+            // The temporal region, the entries stored in every column, and the columns dispatched.
             const glm::ivec4 c = integrateColumns(ctx);
+            const glm::ivec2 everywhere = storedEverywhere(ctx);
+            const shd::IntegrateParams p{{glm::ivec4(r.temporalRegion.lo, everywhere.x), glm::ivec4(r.temporalRegion.hi, everywhere.y)}, c};
+            vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
             vkCmdDispatch(ctx.cmd, groups(c.z - c.x, shd::INTEGRATE_GROUP_X), groups(c.w - c.y, shd::INTEGRATE_GROUP_Y), 1);
             break;
         }

@@ -74,9 +74,9 @@ void recordTemporal(const PassContext& ctx) {
 
 void recordIntegrate(const PassContext& ctx) {
     const FrameResources& r = *ctx.res;
-    // No clear: the pass runs over every column and stores every entry that a lookup or the glow reads,
-    // scattering 0 and transmittance 1 in front of the temporal region and outside its columns
-    // (integrate.comp).
+    // No clear: the pass runs over the columns some reader looks up (integrateColumns) and stores every
+    // entry they read there, scattering 0 and transmittance 1 in front of the temporal region and
+    // outside its columns (integrate.comp).
     if (ctx.poisonIntegrated) {
         // Tests: an entry the pass leaves unstored reads NaN scattering (GpuOptions::poisonIntegrated).
         VkClearColorValue nan{};
@@ -86,10 +86,7 @@ void recordIntegrate(const PassContext& ctx) {
         clearImages(ctx.cmd, {{r[ImageId::integratedScattering].image.get(), nan},
                               {r[ImageId::integratedTransmittance].image.get(), half}});
     }
-    const glm::ivec2 everywhere = storedEverywhere(ctx);
-    const shd::IntegrateParams p{{glm::ivec4(r.temporalRegion.lo, everywhere.x), glm::ivec4(r.temporalRegion.hi, everywhere.y)},
-                                 integrateColumns(ctx)};
-    vkCmdPushConstants(ctx.cmd, ctx.bindings->pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(p), &p);
+    // The push constants (IntegrateParams) with the dispatch (frame_executor.cpp Dispatch::IntegrateColumns).
     dispatchPass(ctx);
 }
 

@@ -86,8 +86,8 @@ private:
 // dispatch over the region. The later passes read the resolved values from the history's output.
 void recordTemporal(const PassContext& ctx);
 
-// Integrate (Record::Integrate): the temporal region and integrateColumns pushed, then the dispatch
-// over those columns. The region's columns integrate; the stored entries in front of it and in the
+// Integrate (Record::Integrate): the temporal region and integrateColumns pushed with the dispatch
+// over those columns (Dispatch::IntegrateColumns). The region's columns integrate; the stored entries in front of it and in the
 // other columns get what empty froxels integrate to (scattering 0, transmittance 1) from the pass
 // itself, not from a clear of both volumes over the whole grid (shaders/integrate.comp).
 void recordIntegrate(const PassContext& ctx);

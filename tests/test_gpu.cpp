@@ -569,7 +569,7 @@ TEST_F(GpuTest, VolumesOutOfViewShadowTheGroundOrAddNothing) {
 }
 
 // Ellipsoid and cylinder volumes and height_falloff (issue 15): the box kind's shape selector and
-// the sampled fog shadow integral (shared/shadows.h shapeDensityLength), froxels and ground alike;
+// the sampled fog shadow integral (shared/shadows.h shapeDensityLengthOf), froxels and ground alike;
 // the GPU's per-volume shape constants (SPEC_SHAPE_LIST) pick the same integral as the CPU.
 TEST_F(GpuTest, EllipsoidCylinderAndHeightFalloffMatchCpu) {
     Scene s = baseScene();

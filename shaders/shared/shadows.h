@@ -214,8 +214,8 @@ BRUME_FUNC float chordCut(float s, vec2 chord) { return s > chord.x ? min(s, cho
 // a kink: the inner shape's boundary (the fade begins) and, for a cylinder, where |q.xz| = |q.y|
 // (the side's fade meets the cap's); the five pieces between the sorted cuts are integrated by
 // Gauss-Legendre. A box's own kinks (six axis pairs) are not cut: its faded pieces err more.
-// shape, falloff: the volume's (shapeDensityLength reads them; a specialized pipeline passes constants:
-// shadowDensityLengthListed).
+// shape, falloff: the volume's (boxKindDensityLength's caller reads them from it, or a specialized
+// pipeline passes them as constants).
 BRUME_FUNC float shapeDensityLengthOf(int shape, bool falloff, VolumeData v, vec3 o, vec3 d, float maxDist) {
     vec3 lo = vec3(v.localFromWorld * vec4(o, 1.0f));
     vec3 ld = vec3(v.localFromWorld * vec4(d, 0.0f));
@@ -250,9 +250,15 @@ BRUME_FUNC float shapeDensityLengthOf(int shape, bool falloff, VolumeData v, vec
     return total + shapeFadedPiece(shape, falloff, v, lo, ld, o.y, d.y, c[3], chord.y);
 }
 
-// The falloff's exp is evaluated whatever its value here: exp(-0 x) is exactly 1.
-BRUME_FUNC float shapeDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist) {
-    return shapeDensityLengthOf(boxShape(v), true, v, o, d, maxDist);
+// A box-kind volume's integral, its shape and whether it has a height falloff given (the volume's,
+// or a specialized pipeline's constants: shadowDensityLengthListed): the box's closed form, exact
+// without a height factor, or else the sampled integral of its own shape (needsShapeShadows is the
+// same choice). GLSL has the sampled one only in the _shapes variants (gpu: VariantKey::shapes).
+BRUME_FUNC float boxKindDensityLength(int shape, bool falloff, VolumeData v, vec3 p, vec3 dir, float maxDist) {
+#if defined(__cplusplus) || defined(BRUME_LOCAL_SHAPES)
+    if (shape != SHAPE_BOX || falloff) return shapeDensityLengthOf(shape, falloff, v, p, dir, maxDist);
+#endif
+    return boxDensityLength(v, p, dir, maxDist);
 }
 
 // Integral of one volume's density from p along unit dir over [0, maxDist] (BRUME_HUGE: to
@@ -260,14 +266,8 @@ BRUME_FUNC float shapeDensityLength(VolumeData v, vec3 o, vec3 d, float maxDist)
 // k: v's kind (a constant where the caller knows it: fog_shadow.glsl).
 BRUME_FUNC float shadowDensityLengthOfKind(int k, VolumeData v, vec3 p, vec3 dir, float maxDist) {
     // BRUME_VOLUME_KIND_USED: a kind the scene lacks is compiled out of specialized pipelines.
-    if (BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) {
-#if defined(__cplusplus) || defined(BRUME_LOCAL_SHAPES)
-        // The box's closed form is exact without a height factor; every other case is sampled. GLSL
-        // has this only in the _shapes variants (gpu: VariantKey::shapes).
-        if (needsShapeShadows(v)) return shapeDensityLength(v, p, dir, maxDist);
-#endif
-        return boxDensityLength(v, p, dir, maxDist);
-    }
+    if (BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX)
+        return boxKindDensityLength(boxShape(v), v.params.z > 0.0f, v, p, dir, maxDist);
     if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_EXPONENTIAL) && k == VOLUME_HEIGHT_EXPONENTIAL)
         return heightExponentialLength(p.y, dir.y, maxDist, v.params.x, v.params.y);
     if (BRUME_VOLUME_KIND_USED(VOLUME_HEIGHT_LINEAR) && k == VOLUME_HEIGHT_LINEAR)
@@ -275,29 +275,25 @@ BRUME_FUNC float shadowDensityLengthOfKind(int k, VolumeData v, vec3 p, vec3 dir
     return 0.0f;
 }
 
-#ifndef __cplusplus
-// shadowDensityLengthOfKind for listed volume slot `entry`'s SPEC_SHAPE_LIST entry (shape | 4 with a
-// falloff; -1: not specialized): a box-kind volume builds its own shape's integral only, and either the
-// box's closed form or the sampled integral (shadowDensityLengthOfKind builds both in the _shapes
-// variants, the choice made per volume at run time). The same function of the same values.
+// shadowDensityLengthOfKind for a listed volume whose SPEC_SHAPE_LIST entry is `entry` (shape | 4 with a
+// falloff; -1: not specialized). With constants a box-kind volume builds its own shape's integral
+// only, and either the box's closed form or the sampled integral: read from the volume at run time,
+// lavapipe builds both (it runs both sides of a branch). The same function of the same values.
 BRUME_FUNC float shadowDensityLengthListed(int k, int entry, VolumeData v, vec3 p, vec3 dir, float maxDist) {
-#ifdef BRUME_LOCAL_SHAPES
-    if (entry >= 0 && BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX) {
-        int shape = entry & 3;
-        bool falloff = (entry & 4) != 0;
-        if (shape != SHAPE_BOX || falloff) return shapeDensityLengthOf(shape, falloff, v, p, dir, maxDist);
-        return boxDensityLength(v, p, dir, maxDist);
-    }
-#endif
+    if (entry >= 0 && BRUME_VOLUME_KIND_USED(VOLUME_BOX) && k == VOLUME_BOX)
+        return boxKindDensityLength(entry & 3, (entry & 4) != 0, v, p, dir, maxDist);
     return shadowDensityLengthOfKind(k, v, p, dir, maxDist);
 }
 
-BRUME_FUNC vec3 shadowOpticalDepthListed(int k, int entry, VolumeData v, vec3 p, vec3 dir, float maxDist) {
-    float len = shadowDensityLengthListed(k, entry, v, p, dir, maxDist);
+// sigma_t x a density length (0 for a length <= 0).
+BRUME_FUNC vec3 opticalDepthOfLength(VolumeData v, float len) {
     if (len <= 0.0f) return vec3(0.0f);
     return (vec3(v.sigmaS_g) + vec3(v.sigmaA)) * len;
 }
-#endif
+
+BRUME_FUNC vec3 shadowOpticalDepthListed(int k, int entry, VolumeData v, vec3 p, vec3 dir, float maxDist) {
+    return opticalDepthOfLength(v, shadowDensityLengthListed(k, entry, v, p, dir, maxDist));
+}
 
 // Optical depth of one volume toward a light (sigma_t x density length); sum over volumes, then
 // exp(-sum) is the transmittance. Finite or +inf, never NaN.
@@ -306,9 +302,7 @@ BRUME_FUNC float shadowDensityLength(VolumeData v, vec3 p, vec3 dir, float maxDi
 }
 
 BRUME_FUNC vec3 shadowOpticalDepthOfKind(int k, VolumeData v, vec3 p, vec3 dir, float maxDist) {
-    float len = shadowDensityLengthOfKind(k, v, p, dir, maxDist);
-    if (len <= 0.0f) return vec3(0.0f);
-    return (vec3(v.sigmaS_g) + vec3(v.sigmaA)) * len;
+    return opticalDepthOfLength(v, shadowDensityLengthOfKind(k, v, p, dir, maxDist));
 }
 
 BRUME_FUNC vec3 shadowOpticalDepth(VolumeData v, vec3 p, vec3 dir, float maxDist) {
