@@ -327,6 +327,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     BRUME_TRY(ensureBuffer(BufferId::frame, sizeof(shd::FrameUniforms), dirty));
     BRUME_TRY(ensureBuffer(BufferId::previousFrame, sizeof(shd::FrameUniforms), dirty));
     BRUME_TRY(ensureBuffer(BufferId::counters, sizeof(shd::FroxelCounters), dirty));
+    BRUME_TRY(ensureBuffer(BufferId::surfaceLights, sizeof(shd::SurfaceLights), dirty));
     // Storage buffers cannot be empty: keep room for at least one record.
     BRUME_TRY(ensureBuffer(BufferId::volumes, std::max<size_t>(cs.volumes.size(), 1) * sizeof(shd::VolumeData), dirty));
     BRUME_TRY(ensureBuffer(BufferId::lights, std::max<size_t>(cs.lights.size(), 1) * sizeof(shd::LightData), dirty));

@@ -29,7 +29,7 @@ const std::array<PassDecl, 17> kPasses{{
     // out of the surfaces' reach culled (core/media_region.h surfaceVolumesInReach; frame_executor.cpp).
     {"geometry", "geometry", Variant::None, Dispatch::Raster, When::SurfacesChanged, Record::Geometry,
      {B::frame, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels, T::localShadowTexels,
-      T::volumeTexels},
+      T::volumeTexels, B::surfaceLights},
      {I::sceneColor, I::sceneDepth}, true},
     // The deepest and shallowest scene depth of each 8x8 pixel tile: integrate keeps the entries of
     // each column its pixels can read, and with distant fog the distant fog pass's corners and the

@@ -271,6 +271,32 @@ SpecKey culledSpecKey(SpecKey k, const std::vector<bool>& inReach) {
     return k;
 }
 
+// The geometry pass's key with its surface lights as constants (SPEC_SURFACE_LIGHTS: their count and
+// each slot's kind), where they fit the slots of shd::SurfaceLights; else the pass reads the reach list.
+SpecKey surfaceLightsSpecKey(SpecKey k, const CompiledScene& cs, const LightReach& reach) {
+    static_assert(shd::SURFACE_LIGHT_SLOTS == 8, "BRUME_EACH_SURFACE_LIGHT (specialization.h) expands 8 slots");
+    const size_t n = reach.surfaceLights.size();
+    if (n > static_cast<size_t>(shd::SURFACE_LIGHT_SLOTS)) return k;
+    int spec = static_cast<int>(n);
+    for (size_t s = 0; s < n; ++s)
+        spec |= BRUME_SPEC_SURFACE_LIGHT_ENTRY(static_cast<int>(s), cs.lights[static_cast<size_t>(reach.surfaceLights[s])].kind.x);
+    k[SpecId::SPEC_SURFACE_LIGHTS] = spec;
+    return k;
+}
+
+// The surface lights in their slots (shd::SurfaceLights), as compiled: the geometry pass reads neither
+// the glow radius the light passes' copy carries (writeLightGlowRadii) nor the unused slots (zeros).
+void writeSurfaceLights(void* mapped, const std::vector<shd::LightData>& lights, const LightReach& reach) {
+    shd::SurfaceLights out{};
+    const size_t n = std::min(reach.surfaceLights.size(), static_cast<size_t>(shd::SURFACE_LIGHT_SLOTS));
+    for (size_t s = 0; s < n; ++s) {
+        const int i = reach.surfaceLights[s];
+        out.light[s] = lights[static_cast<size_t>(i)];
+        out.index[s] = glm::ivec4(i, 0, 0, 0);
+    }
+    std::memcpy(mapped, &out, sizeof(out));
+}
+
 // The pixels whose composite lookups (shd::integratedLookup: columns floor(pixel / tile - 0.5) and
 // the next, clamped) can read a froxel column of the temporal region, [lo, hi); every pixel when
 // height or depth fog continues past the froxel far (distantFog). Outside the region's columns the
@@ -399,7 +425,8 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     r.mediaEmits = s_->spec[SpecId::SPEC_EMISSION] != 0;
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
     s_->froxelSpec = culledSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
-    s_->surfaceSpec = culledSpecKey(s_->spec, surfaceVolumesInReach(cs, frame));
+    s_->surfaceSpec = surfaceLightsSpecKey(culledSpecKey(s_->spec, surfaceVolumesInReach(cs, frame)), cs, lightReach);
+    writeSurfaceLights(r[BufferId::surfaceLights].mapped, cs.lights, lightReach);
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
     // The shadow volume pass dispatches only the layers some reader needs (core/light_reach.h), and in

@@ -119,9 +119,11 @@ vec3 froxelFogTransmittance(int light, ShadowLookup k, vec3 p, vec3 toLight, flo
 // blend. Not the volume's blend with the exact fallback: lavapipe runs both sides of that branch, so
 // the blend only added its 8 loads to the exact form's cost (docs/performance.md, "perfgeo").
 // s: shadowLookupAt of p, computed once for all lights (the vdb layer's lookup).
-// vs: fogVolumes(), fetched once per fragment.
-vec3 surfaceFogTransmittance(FogVolumes vs, int light, SurfaceShadowLookup s, vec3 p, vec3 toLight, float distance) {
-    if (!fogShadowsLight(lightAt(light), localFogShadowsFlag())) return vec3(1.0f);
+// vs: fogVolumes(), fetched once per fragment. l: lightAt(light), or the same light's surface slot
+// (geometry.frag), whose kind may be a constant.
+vec3 surfaceFogTransmittance(FogVolumes vs, LightData l, int light, SurfaceShadowLookup s, vec3 p, vec3 toLight,
+                             float distance) {
+    if (!fogShadowsLight(l, localFogShadowsFlag())) return vec3(1.0f);
     vec3 vdb = vdbShadowBlend(light, s.k);  // at the clamped lookup even outside (core: the same)
-    return lightFogTransmittance(vs, lightAt(light), p, toLight, distance) * vdb;
+    return lightFogTransmittance(vs, l, p, toLight, distance) * vdb;
 }

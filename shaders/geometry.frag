@@ -30,6 +30,35 @@ layout(location = 4) in float viewDepth;
 layout(location = 0) out vec4 outRadiance;
 layout(location = 1) out float outViewDepth;
 
+// What every light's term needs of the fragment, computed once.
+struct SurfacePoint {
+    vec3 position;  // on the surface [m]
+    vec3 normal;    // unit, facing the camera
+    vec3 albedo;
+    vec3 origin;    // the shadow rays' start, off the surface
+    SurfaceShadowLookup shadow;
+    FogVolumes volumes;
+    float sunVisibility;  // through the sun shadow map, for the light it serves
+};
+
+// Light i's radiance off the surface (l: its data): Lambert x the fog's transmittance toward it x its
+// shadow maps' visibility; 0 where the surface faces away from it.
+vec3 surfaceLightTerm(LightData l, int i, SurfacePoint f) {
+    LightSample ls = evalLight(l, f.position);
+    vec3 direct = lambert(f.albedo, f.normal, ls);
+    if (direct == vec3(0.0f)) return vec3(0.0f);
+    return direct * surfaceFogTransmittance(f.volumes, l, i, f.shadow, f.origin, ls.toLight, ls.distance) *
+           (i == frame.sunShadowLight - 1 ? f.sunVisibility : 1.0f) * localShadowVisibility(l, f.origin);
+}
+
+// Surface slot s (shared/bindings.h SurfaceLights) with its kind the pipeline's constant: the same light
+// as lightAt(surfaceLights.index[s].x), and only its kind's code is built.
+LightData surfaceSlot(int s) {
+    LightData l = surfaceLights.light[s];
+    l.kind.x = BRUME_SPEC_SURFACE_LIGHT_KIND(SPEC_SURFACE_LIGHTS, s);
+    return l;
+}
+
 void main() {
 #ifdef BRUME_SPHERE
     SphereRayHit h = sphereRayHit(sphere.xyz, sphere.w);
@@ -44,26 +73,35 @@ void main() {
     if (dot(n, frame.cameraPosition.xyz - worldPos) < 0.0f) n = -n;
 #endif
     vec3 radiance = emission + albedo * frame.ambient.rgb;
+    SurfacePoint f;
+    f.position = worldPos;
+    f.normal = n;
+    f.albedo = albedo;
     // The same offset off the surface as the CPU's shadow rays (surfaceRayOffset).
     vec3 m = abs(worldPos);
-    vec3 origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
-    SurfaceShadowLookup shadow = shadowLookupAt(froxelCoordFromWorld(origin, frame).xyz, frame, frame.shadowReduction);
-    // The sun shadow map serves one light (frame.sunShadowLight): looked up once, not in every trip of
-    // the light loop (lavapipe runs the lookup for every light, mapped or not: docs/performance.md).
-    int sunLight = frame.sunShadowLight - 1;
+    f.origin = worldPos + n * (1.0e-4f + 2.0e-6f * max(m.x, max(m.y, m.z)));
+    f.shadow = shadowLookupAt(froxelCoordFromWorld(f.origin, frame).xyz, frame, frame.shadowReduction);
     // The volumes of the fog transmittance, fetched once for every light (fog_shadow.glsl fogVolumes).
-    FogVolumes volumes = fogVolumes();
-    float sunVisibility = sunShadowVisibility(sunLight, origin);
+    f.volumes = fogVolumes();
+    // The sun shadow map serves one light (frame.sunShadowLight): looked up once, not in every light's
+    // term (lavapipe runs the lookup for every light, mapped or not: docs/performance.md).
+    f.sunVisibility = sunShadowVisibility(frame.sunShadowLight - 1, f.origin);
     // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
-    int reach = lightReachOffset(frame.froxelDims.xyz);
-    int count = clusterInt(reach);
-    for (int k = 0; k < count; ++k) {
-        int i = clusterInt(reach + 1 + k);
-        LightSample ls = evalLight(lightAt(i), worldPos);
-        vec3 direct = lambert(albedo, n, ls);
-        if (direct == vec3(0.0f)) continue;
-        radiance += direct * surfaceFogTransmittance(volumes, i, shadow, origin, ls.toLight, ls.distance) *
-                    (i == sunLight ? sunVisibility : 1.0f) * localShadowVisibility(i, origin);
+    if (SPEC_SURFACE_LIGHTS >= 0) {
+        // Unrolled over the slots the constant lists: no reach list to read, each light's uniforms at a
+        // constant offset, and each slot's kind a constant (docs/performance.md, "surfacelights").
+#define BRUME_SURFACE_LIGHT(s)                                          \
+    if ((s) < BRUME_SPEC_SURFACE_LIGHT_COUNT(SPEC_SURFACE_LIGHTS)) \
+        radiance += surfaceLightTerm(surfaceSlot(s), surfaceLights.index[s].x, f);
+        BRUME_EACH_SURFACE_LIGHT(BRUME_SURFACE_LIGHT)
+#undef BRUME_SURFACE_LIGHT
+    } else {
+        int reach = lightReachOffset(frame.froxelDims.xyz);
+        int count = clusterInt(reach);
+        for (int k = 0; k < count; ++k) {
+            int i = clusterInt(reach + 1 + k);
+            radiance += surfaceLightTerm(lightAt(i), i, f);
+        }
     }
     outRadiance = vec4(radiance, 1.0f);
     outViewDepth = viewDepth;

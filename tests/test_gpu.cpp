@@ -20,6 +20,7 @@
 #include "gpu/gpu_renderer.h"
 #include "gpu_test_support.h"
 #include "ground_shadow.h"
+#include "shaders/shared/bindings.h"
 
 using namespace brume;
 using namespace brume::gpu;
@@ -466,6 +467,53 @@ TEST_F(GpuTest, PointAndSpotShadowMapsMatchCpu) {
     s.lights = {point, spot};
     expectMatchesCpu(s, "point/spot shadow maps, high", Quality::High);
     expectMatchesCpu(s, "point/spot shadow maps, low", Quality::Low);
+}
+
+// The geometry pass's surface lights as constants (SPEC_SURFACE_LIGHTS, shared/bindings.h SurfaceLights):
+// with at most SURFACE_LIGHT_SLOTS lights in reach its loop is unrolled over slots whose kinds are
+// constants; with more it reads the reach list. Eight lights of every kind in reach, the directional
+// ones not first in the scene (the reach puts them first), the sun on the sun shadow map and a point and
+// a spot light on their own maps: the slots agree with the CPU, and with the loop, which the same scene
+// takes once a ninth light, out of everything's range, is listed too (no culling: every light is a
+// surface light). A slot read with the wrong light, index or kind changes the surfaces by far more.
+TEST_F(GpuTest, SurfaceLightSlotsRenderWhatTheReachListRenders) {
+    static_assert(shd::SURFACE_LIGHT_SLOTS == 8);
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.geometry = ground();
+    Light mappedPoint = pointLight({-1.8f, 1.2f, 0.8f}, {1.0f, 0.7f, 0.5f});
+    mappedPoint.shadows = true;
+    Light mappedSpot = spotLight();
+    mappedSpot.shadows = true;
+    Light plainSpot = spotLight();
+    plainSpot.position = {-1.0f, 2.5f, 1.5f};
+    plainSpot.color = {0.3f, 0.5f, 1.0f};
+    Light skyFill = makeLight(LightType::Directional);
+    skyFill.direction = glm::normalize(glm::vec3(-0.6f, -0.5f, 0.4f));
+    skyFill.color = {0.4f, 0.5f, 0.9f};
+    skyFill.intensity = 0.7f;
+    skyFill.shadows = false;
+    s.lights = {pointLight({1.5f, 0.8f, 0.5f}, {1.0f, 0.4f, 0.2f}), sun(), mappedPoint, mappedSpot,
+                plainSpot, pointLight({0.0f, 0.4f, 2.0f}, {0.5f, 1.0f, 0.5f}), skyFill,
+                pointLight({2.5f, 1.5f, -1.5f}, {0.9f, 0.9f, 0.3f})};
+    ASSERT_EQ(s.lights.size(), 8u);
+    RenderRequest request = smallRequest();
+    request.quality = Quality::High;  // fog shadows toward the point and spot lights too
+    auto slots = renderer->render(s, request);
+    ASSERT_TRUE(slots.ok()) << slots.error().message;
+    const FroxelResult cpu = renderFroxelCpu(s, request);
+    const double vsCpu = relativeMeanAbsError(slots.value().image, cpu.image);
+    EXPECT_LT(vsCpu, kTolerance);
+
+    Light outOfReach = pointLight({200.0f, 1.0f, -200.0f}, glm::vec3(1.0f));
+    outOfReach.range = 2.0f;
+    s.lights.push_back(outOfReach);
+    request.lightCulling = false;
+    auto loop = renderer->render(s, request);
+    ASSERT_TRUE(loop.ok()) << loop.error().message;
+    const double vsLoop = relativeMeanAbsError(slots.value().image, loop.value().image);
+    EXPECT_LT(vsLoop, 1.0e-6);
+    std::printf("[surface-slots] slots vs cpu %.2e, slots vs loop %.2e\n", vsCpu, vsLoop);
 }
 
 // Volumetric shadows (shared/shadows.h): a dense faded box over height fog and the ground, a sun and

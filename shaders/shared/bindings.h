@@ -4,6 +4,7 @@
 #define BRUME_SHARED_BINDINGS_H
 
 #include "common.h"
+#include "types.h"
 
 BRUME_NAMESPACE_BEGIN
 
@@ -50,6 +51,17 @@ BRUME_CONST int TEMPORAL_GROUP_Y = 8;
 // at the deepest cell a lit froxel reads (shaders/column_entries.glsl shadowCellEnd). Runs of 8 at
 // `low` measured the same (docs/performance.md, "shadowskip").
 BRUME_CONST int SHADOW_RUN = 16;
+
+// The geometry pass's surface lights (core/light_reach.h LightReach::surfaceLights, in that order) as a
+// uniform buffer (frame_table.h surfaceLights), written once per render call. A pipeline specialized
+// with SPEC_SURFACE_LIGHTS (at most SURFACE_LIGHT_SLOTS lights) unrolls its light loop over these slots:
+// each slot's loads have a constant offset, which lavapipe makes one scalar load each, where the
+// texel view's fetches through the reach list were vector gathers (docs/performance.md, "surfacelights").
+BRUME_CONST int SURFACE_LIGHT_SLOTS = 8;
+struct SurfaceLights {
+    LightData light[SURFACE_LIGHT_SLOTS];  // slot s: lights[index[s].x]
+    ivec4 index[SURFACE_LIGHT_SLOTS];      // x: the light's index in lights[]; yzw unused
+};
 
 // The temporal and integrate passes' push constants: the froxels they compute, [lo, hi) per axis
 // (core/media_region.h temporalFroxelRegion; w unused). The rest of the grid is known without them:

@@ -37,7 +37,8 @@
     X(nearTiles, 32, STORAGE_INDIRECT, std430, buffer, NearTileBlock, ExactListHeader nearTileList; uint nearTileIndex[];) \
     X(farTiles, 33, STORAGE_INDIRECT, std430, buffer, FarTileBlock, ExactListHeader farTileList; uint farTileIndex[];) \
     X(allFarTiles, 35, STORAGE_INDIRECT, std430, buffer, AllFarTileBlock, ExactListHeader allFarTileList; uint allFarTileIndex[];) \
-    X(columnEnds, 37, STORAGE_GPU, std430, buffer, ColumnEndBlock, ivec4 columnEnd[];)
+    X(columnEnds, 37, STORAGE_GPU, std430, buffer, ColumnEndBlock, ivec4 columnEnd[];) \
+    X(surfaceLights, 46, UNIFORM, std140, uniform, SurfaceLightBlock, SurfaceLights surfaceLights;)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -66,6 +67,8 @@
 //                       read (xy, inclusive) and its walk end (z: the froxels it computes are [0, z)),
 //                       this frame's (half frame.temporal.w) and the previous frame's (the other half),
 //                       written by the column ends pass (shaders/column_entries.glsl)
+//   surfaceLights       SurfaceLights (bindings.h): the surface lights in the light reach's order, read by
+//                       the geometry pass where SPEC_SURFACE_LIGHTS gives their count and kinds
 //   nearTiles, farTiles, allFarTiles
 //                       ExactListHeader (the indirect dispatch: one workgroup per tile), then uint[]:
 //                       the tiles (depthTileIndex) whose pixels all lie within the froxel far, those

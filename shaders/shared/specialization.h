@@ -23,7 +23,8 @@
     X(SPEC_EMISSION, 11, 1)            /* 0: no volume emits: no mediaEmission store or load */ \
     X(SPEC_GREY_FOG_SHADOWS, 12, 0)    /* 1: every volume's sigma_s + sigma_a is grey: one exp per light */ \
     X(SPEC_SPOT_LIGHTS, 13, 1)         /* 0: no spot light: evalLightNear's cone is left out */ \
-    X(SPEC_SHAPE_LIST, 14, -1)         /* box-kind shape and falloff of volume i in bits 3i..3i+2; -1: read them */
+    X(SPEC_SHAPE_LIST, 14, -1)         /* box-kind shape and falloff of volume i in bits 3i..3i+2; -1: read them */ \
+    X(SPEC_SURFACE_LIGHTS, 15, -1)     /* geometry: surface light count | slot kinds (below); -1: read the reach list */
 
 // Scenes with at most this many volumes get each volume's kind as a constant (SPEC_VOLUME_LIST):
 // volume i's VOLUME_* (0..4) in 3 bits, packed and unpacked by these two macros on both sides.
@@ -38,6 +39,13 @@
 // M(0) ... M(SPEC_MAX_LISTED_VOLUMES - 1): the shaders' loops over the listed volumes, unrolled so that
 // each volume's index, and so its kind, is a constant (fog_shadow.glsl, voxelize_body.glsl,
 // distant_fog.comp; each body tests BRUME_SPEC_VOLUME_LISTED(i)).
+// SPEC_SURFACE_LIGHTS, the geometry pass's surface lights (bindings.h SurfaceLights) when there are at
+// most SURFACE_LIGHT_SLOTS: their count in bits 0..3, slot s's LIGHT_* in bits 4 + 2s..5 + 2s.
+#define BRUME_SPEC_SURFACE_LIGHT_ENTRY(s, kind) ((kind) << (4 + 2 * (s)))
+#define BRUME_SPEC_SURFACE_LIGHT_COUNT(spec) ((spec) & 15)
+#define BRUME_SPEC_SURFACE_LIGHT_KIND(spec, s) (((spec) >> (4 + 2 * (s))) & 3)
+// M(0) ... M(SURFACE_LIGHT_SLOTS - 1): geometry.frag's light loop, unrolled so that each slot is a constant.
+#define BRUME_EACH_SURFACE_LIGHT(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7)
 #define BRUME_EACH_LISTED_VOLUME(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7) M(8) M(9)
 // In the froxel passes' list only (gpu: RendererState::froxelSpec): volume i is out of their reach this
 // frame (core/media_region.h froxelVolumesInReach), its terms are exactly 0 and are left out.
