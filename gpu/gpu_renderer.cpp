@@ -274,7 +274,8 @@ SpecKey culledSpecKey(SpecKey k, const std::vector<bool>& inReach) {
 // The geometry pass's key with its surface lights as constants (SPEC_SURFACE_LIGHTS: their count and
 // each slot's kind), where they fit the slots of shd::SurfaceLights; else the pass reads the reach list.
 SpecKey surfaceLightsSpecKey(SpecKey k, const CompiledScene& cs, const LightReach& reach) {
-    static_assert(shd::SURFACE_LIGHT_SLOTS == 8, "BRUME_EACH_SURFACE_LIGHT (specialization.h) expands 8 slots");
+    static_assert(shd::SURFACE_LIGHT_SLOTS <= 15, "SPEC_SURFACE_LIGHTS holds the count in 4 bits");
+    static_assert(4 + 2 * shd::SURFACE_LIGHT_SLOTS <= 31, "SPEC_SURFACE_LIGHTS holds 2 bits a slot from bit 4");
     const size_t n = reach.surfaceLights.size();
     if (n > static_cast<size_t>(shd::SURFACE_LIGHT_SLOTS)) return k;
     int spec = static_cast<int>(n);

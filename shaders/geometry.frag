@@ -2,6 +2,7 @@
 // core/geometry.cpp shadeSurface with the froxel renderer's fog shadow. Writes radiance and view depth for the composite.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Lights, clusters and volumes through texel views (resources.glsl; docs/performance.md "light3").
 #define BRUME_LIGHT_TEXELS
 #define BRUME_VOLUME_TEXELS
@@ -89,12 +90,11 @@ void main() {
     // Only the lights that can reach the view frustum (core/light_reach.h), directional ones first.
     if (SPEC_SURFACE_LIGHTS >= 0) {
         // Unrolled over the slots the constant lists: no reach list to read, each light's uniforms at a
-        // constant offset, and each slot's kind a constant (docs/performance.md, "surfacelights").
-#define BRUME_SURFACE_LIGHT(s)                                          \
-    if ((s) < BRUME_SPEC_SURFACE_LIGHT_COUNT(SPEC_SURFACE_LIGHTS)) \
-        radiance += surfaceLightTerm(surfaceSlot(s), surfaceLights.index[s].x, f);
-        BRUME_EACH_SURFACE_LIGHT(BRUME_SURFACE_LIGHT)
-#undef BRUME_SURFACE_LIGHT
+        // constant offset, and each slot's kind a constant (docs/performance.md, "surfacelights"). A
+        // loop, not the slots written out: Mesa inlines every written-out copy before it folds the
+        // count, and compiled 8 copies' worth (2.6 s for a first frame); it unrolls this one to the count.
+        [[unroll]] for (int s = 0; s < BRUME_SPEC_SURFACE_LIGHT_COUNT(SPEC_SURFACE_LIGHTS); ++s)
+            radiance += surfaceLightTerm(surfaceSlot(s), surfaceLights.index[s].x, f);
     } else {
         int reach = lightReachOffset(frame.froxelDims.xyz);
         int count = clusterInt(reach);

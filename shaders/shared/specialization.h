@@ -44,8 +44,6 @@
 #define BRUME_SPEC_SURFACE_LIGHT_ENTRY(s, kind) ((kind) << (4 + 2 * (s)))
 #define BRUME_SPEC_SURFACE_LIGHT_COUNT(spec) ((spec) & 15)
 #define BRUME_SPEC_SURFACE_LIGHT_KIND(spec, s) (((spec) >> (4 + 2 * (s))) & 3)
-// M(0) ... M(SURFACE_LIGHT_SLOTS - 1): geometry.frag's light loop, unrolled so that each slot is a constant.
-#define BRUME_EACH_SURFACE_LIGHT(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7)
 #define BRUME_EACH_LISTED_VOLUME(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7) M(8) M(9)
 // In the froxel passes' list only (gpu: RendererState::froxelSpec): volume i is out of their reach this
 // frame (core/media_region.h froxelVolumesInReach), its terms are exactly 0 and are left out.
