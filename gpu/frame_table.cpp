@@ -88,7 +88,7 @@ const std::array<PassDecl, 17> kPasses{{
     // (shared/distant_table.h), up to the deepest entry the corner's pixels read (their depth tiles);
     // the composite interpolates it.
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
-     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::depthTileTexels},
+     {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::depthTileTexels, B::surfaceLights},
      {B::distantTable}, true},
     // With distant fog, the tiles within the froxel far, those past it and the others, as three
     // indirect dispatches (one invocation walks the depth tiles: tile_lists.comp).

@@ -51,11 +51,21 @@ Accumulated accumulateDistantPiece(FogVolumes vs, Accumulated a, vec3 dir, float
     // increasing order, before any other: the CPU's sum over all lights, stopping at the first
     // local one (a skipped trip would cost as much as a taken one on lavapipe). Specialized: exactly
     // the directional lights, a fixed trip count.
+    // With their count a constant that the surface light slots hold (shared/bindings.h SurfaceLights: the
+    // reach's first lights, the directional ones), each light comes from its slot's uniforms at a
+    // constant offset with its kind a constant, not through the reach list and lightTexels' gathers
+    // (docs/performance.md, "surfacelights").
+    const bool slots = SPEC_DIRECTIONAL_LIGHTS >= 0 && SPEC_DIRECTIONAL_LIGHTS <= SURFACE_LIGHT_SLOTS;
     int reach = lightReachOffset(frame.froxelDims.xyz);
     int listed = SPEC_DIRECTIONAL_LIGHTS >= 0 ? SPEC_DIRECTIONAL_LIGHTS : clusterInt(reach);
     for (int k = 0; k < listed; ++k) {
-        int j = clusterInt(reach + 1 + k);
-        LightData l = lightAt(j);
+        LightData l;
+        if (slots) {
+            l = surfaceLights.light[k];
+            l.kind.x = LIGHT_DIRECTIONAL;
+        } else {
+            l = lightAt(clusterInt(reach + 1 + k));
+        }
         if (SPEC_DIRECTIONAL_LIGHTS < 0 && l.kind.x != LIGHT_DIRECTIONAL) break;
         vec3 t = lightFogTransmittance(vs, l, middle, -l.direction.xyz, BRUME_HUGE);
         if (SPEC_VOLUME_COUNT >= 0) {

@@ -680,7 +680,8 @@ TEST_F(GpuTest, InfluencerAndItsWakeMatchCpu) {
     EXPECT_GT(relativeMeanAbsError(renderFroxelCpu(without, smallRequest()).image, renderFroxelCpu(s, smallRequest()).image), 0.001);
 }
 
-TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
+// Height and depth fog to a camera far 400 m away, the froxels to 8 m, the ground across the froxel far.
+Scene distantFogScene() {
     Scene s = baseScene();
     s.camera.far = 400.0f;
     s.froxels.far = 8.0f;
@@ -692,12 +693,15 @@ TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
     plane.type = GeometryType::Plane;
     plane.height = -0.5f;
     s.geometry = {plane};
-    expectMatchesCpu(s, "distant fog");
-    // Pixel by pixel too: the composite splits the screen into tiles within the froxel far, tiles past
-    // it (the integrated volume's last entry read once) and tiles across it (tile_lists.comp); here the
-    // ground crosses the froxel far, so all three kinds are on screen, and a tile of the wrong list
-    // would leave a row of pixels with the fog of another depth, which the mean above could absorb.
-    auto gpu = renderer->render(s, smallRequest());
+    return s;
+}
+
+// Pixel by pixel: the composite splits the screen into tiles within the froxel far, tiles past it (the
+// integrated volume's last entry read once) and tiles across it (tile_lists.comp); in distantFogScene
+// the ground crosses the froxel far, so all three kinds are on screen, and a tile of the wrong list
+// would leave a row of pixels with the fog of another depth, which a mean error could absorb.
+void expectDistantPixelsMatchCpu(GpuRenderer& renderer, const Scene& s, const char* what) {
+    auto gpu = renderer.render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
     const Image cpu = renderFroxelCpu(s, smallRequest()).image;
     int differ = 0;
@@ -705,8 +709,33 @@ TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
         const glm::vec3 a(gpu.value().image.pixels[i]), b(cpu.pixels[i]);
         if (glm::length(a - b) > 1e-3f * std::max(glm::length(b), 1e-3f)) ++differ;
     }
-    std::printf("[distant fog] %d of %zu pixels differ from the CPU's by > 0.1%%\n", differ, cpu.pixels.size());
-    EXPECT_LE(differ, 3);
+    std::printf("[%s] %d of %zu pixels differ from the CPU's by > 0.1%%\n", what, differ, cpu.pixels.size());
+    EXPECT_LE(differ, 3) << what;
+}
+
+TEST_F(GpuTest, DistantFogPastTheFroxelRangeMatchesCpu) {
+    const Scene s = distantFogScene();
+    expectMatchesCpu(s, "distant fog");
+    expectDistantPixelsMatchCpu(*renderer, s, "distant fog");
+}
+
+// The distant fog pass reads the directional lights from the surface light slots (shared/bindings.h
+// SurfaceLights) when they fit, else through the reach list: nine directional lights, one more than
+// the slots, take the list, and still agree with the CPU pixel by pixel.
+TEST_F(GpuTest, DistantFogWithMoreDirectionalLightsThanSlotsMatchesCpu) {
+    Scene s = distantFogScene();
+    for (int i = 0; i < shd::SURFACE_LIGHT_SLOTS; ++i) {
+        Light l = makeLight(LightType::Directional);
+        const float a = 0.7f * static_cast<float>(i);
+        l.direction = glm::normalize(glm::vec3(std::cos(a), -0.6f, std::sin(a)));
+        l.color = {0.5f + 0.05f * static_cast<float>(i), 0.6f, 0.8f - 0.05f * static_cast<float>(i)};
+        l.intensity = 0.3f;
+        l.shadows = false;
+        s.lights.push_back(l);
+    }
+    ASSERT_EQ(s.lights.size(), static_cast<size_t>(shd::SURFACE_LIGHT_SLOTS) + 1);
+    expectMatchesCpu(s, "distant fog, 9 suns");
+    expectDistantPixelsMatchCpu(*renderer, s, "distant fog, 9 suns");
 }
 
 // Without vdb volumes the light passes and the glow compute the media where they use them, and
