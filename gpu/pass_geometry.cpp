@@ -148,8 +148,12 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
     return pass;
 }
 
-Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key,
+Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& sceneKey,
                                        bool shapes, bool spheres) {
+    // Only the constants these shaders read: the editor's coarse and full frames, whose keys differ in
+    // the froxel passes' constants, share their pipelines (a new set of surface lights builds one).
+    const SpecKey key = shapes ? constantsReadBy(sceneKey, {"geometry_shapes.frag", "geometry_sphere_shapes.frag"})
+                               : constantsReadBy(sceneKey, {"geometry.frag", "geometry_sphere.frag"});
     auto shading = [&](bool sphere) -> Result<VkPipeline> {
         auto it = pipelines_.find({key, shapes, sphere});
         if (it == pipelines_.end()) {

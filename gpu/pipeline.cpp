@@ -9,6 +9,8 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <set>
+#include <span>
 #include <vector>
 
 #include "frame_resources.h"
@@ -189,6 +191,35 @@ Result<ShaderModuleOwner> createShaderModule(const Device& device, const char* n
     BRUME_VK(vkCreateShaderModule(device.vk(), &info, nullptr, &module), std::string("load the shader ") + name);
     device.name(module, VK_OBJECT_TYPE_SHADER_MODULE, name);
     return ShaderModuleOwner(device.vk(), module);
+}
+
+namespace {
+
+// Adds the SpecIds that a SPIR-V module decorates (OpDecorate <id> SpecId <n>) to ids.
+void addSpecIds(std::span<const uint32_t> words, std::set<uint32_t>& ids) {
+    constexpr uint32_t kOpDecorate = 71;
+    constexpr uint32_t kDecorationSpecId = 1;
+    constexpr size_t kHeaderWords = 5;
+    for (size_t i = kHeaderWords; i < words.size();) {
+        const uint32_t count = words[i] >> 16;
+        const uint32_t op = words[i] & 0xFFFFu;
+        if (count == 0 || i + count > words.size()) break;
+        if (op == kOpDecorate && count >= 4 && words[i + 2] == kDecorationSpecId) ids.insert(words[i + 3]);
+        i += count;
+    }
+}
+
+}  // namespace
+
+SpecKey constantsReadBy(const SpecKey& key, std::initializer_list<const char*> shaders) {
+    std::set<uint32_t> ids;
+    for (const char* s : shaders) addSpecIds(embeddedSpirv(s), ids);
+    SpecKey out;
+#define BRUME_CPP_SPEC_KEEP(name, id, value) \
+    if (ids.count(id) != 0) out[SpecId::name] = key[SpecId::name];
+    BRUME_SPEC_CONSTANTS(BRUME_CPP_SPEC_KEEP)
+#undef BRUME_CPP_SPEC_KEEP
+    return out;
 }
 
 std::string SpecKey::text() const {

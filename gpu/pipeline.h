@@ -5,6 +5,7 @@
 #include <array>
 #include <compare>
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <span>
 #include <string>
@@ -61,6 +62,13 @@ struct SpecKey {
     auto operator<=>(const SpecKey&) const = default;
     std::string text() const;  // "k0,k1,...": part of a pipeline's debug name
 };
+
+// key with every constant that none of `shaders` (embedded SPIR-V names, e.g. "geometry.frag")
+// declares reset to its default: spirv-opt leaves in each module only the constants it reads, so keys
+// that differ only in the others build one pipeline, not two (the editor's coarse and full frames differ
+// in the froxel passes' shadow reduction, which the geometry pass does not read). The embedded SPIR-V's
+// constants, also where BRUME_SPV_DIR replaces a shader.
+SpecKey constantsReadBy(const SpecKey& key, std::initializer_list<const char*> shaders);
 
 // A VkSpecializationInfo pointing into its own entries and the key's values (keep both alive).
 struct Specialization {

@@ -12,6 +12,7 @@
 
 #include "glslang_support.h"
 #include "gpu/frame_table.h"
+#include "gpu/pipeline.h"
 
 using namespace brume;
 using namespace brume::gpu;
@@ -260,3 +261,24 @@ TEST(FrameTable, VariantNamesFollowTheBuild) {
 }
 
 }  // namespace
+
+// The geometry pipelines are keyed by the constants their shaders read (gpu/pipeline.h constantsReadBy):
+// the froxel passes' constants, which the editor's coarse and full frames set differently, are reset,
+// and the ones the geometry shaders read are kept. Each of the four geometry shaders is read.
+TEST(FrameTable, GeometryKeysKeepTheConstantsTheGeometryShadersRead) {
+    SpecKey key;
+    for (size_t i = 0; i < key.values.size(); ++i) key.values[i] = 100 + static_cast<int32_t>(i);
+    for (const auto& names : {std::pair{"geometry.frag", "geometry_sphere.frag"},
+                              std::pair{"geometry_shapes.frag", "geometry_sphere_shapes.frag"}}) {
+        const SpecKey kept = constantsReadBy(key, {names.first, names.second});
+        const SpecKey defaults;
+        for (SpecId read : {SpecId::SPEC_SURFACE_LIGHTS, SpecId::SPEC_VOLUME_LIST, SpecId::SPEC_SHAPE_LIST,
+                            SpecId::SPEC_SUN_SHADOW_MAP, SpecId::SPEC_GREY_FOG_SHADOWS})
+            EXPECT_EQ(kept[read], key[read]) << names.first << " constant " << static_cast<int>(read);
+        for (SpecId unread : {SpecId::SPEC_SHADOW_REDUCTION, SpecId::SPEC_EMISSION, SpecId::SPEC_INFLUENCERS,
+                              SpecId::SPEC_DISTANT_FOG, SpecId::SPEC_DIRECTIONAL_LIGHTS})
+            EXPECT_EQ(kept[unread], defaults[unread]) << names.first << " constant " << static_cast<int>(unread);
+    }
+    // A shader that reads none keeps none.
+    EXPECT_EQ(constantsReadBy(key, {"geometry.vert"}), SpecKey{});
+}
