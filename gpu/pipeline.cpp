@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <span>
@@ -209,11 +210,28 @@ void addSpecIds(std::span<const uint32_t> words, std::set<uint32_t>& ids) {
     }
 }
 
+// The SpecIds shader `name` declares, scanned once per shader (every frame asks for its passes' keys).
+const std::set<uint32_t>& specIdsOf(const char* name) {
+    static std::mutex mutex;
+    static std::map<std::string, std::set<uint32_t>, std::less<>> scanned;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = scanned.find(std::string_view(name));
+    if (it == scanned.end()) {
+        std::set<uint32_t> ids;
+        addSpecIds(embeddedSpirv(name), ids);
+        it = scanned.emplace(name, std::move(ids)).first;
+    }
+    return it->second;
+}
+
 }  // namespace
 
 SpecKey constantsReadBy(const SpecKey& key, std::initializer_list<const char*> shaders) {
     std::set<uint32_t> ids;
-    for (const char* s : shaders) addSpecIds(embeddedSpirv(s), ids);
+    for (const char* s : shaders) {
+        const std::set<uint32_t>& read = specIdsOf(s);
+        ids.insert(read.begin(), read.end());
+    }
     SpecKey out;
 #define BRUME_CPP_SPEC_KEEP(name, id, value) \
     if (ids.count(id) != 0) out[SpecId::name] = key[SpecId::name];
@@ -264,9 +282,13 @@ Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout lay
 
 Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLayout layout, const std::string& shader,
                                               const SpecKey* spec) {
-    const std::string key = spec ? shader + "#" + spec->text() : shader;
+    // Keyed by the constants the shader reads: keys that differ only in others (the editor's coarse and
+    // full frames) share a pipeline.
+    std::optional<SpecKey> read;
+    if (spec) read = constantsReadBy(*spec, {shader.c_str()});
+    const std::string key = read ? shader + "#" + read->text() : shader;
     if (auto it = passes_.find(key); it != passes_.end()) return &it->second;
-    Result<ComputePass> p = createComputePass(device, layout, shader, spec);
+    Result<ComputePass> p = createComputePass(device, layout, shader, read ? &*read : nullptr);
     if (!p) return p.error();
     return &passes_.emplace(key, std::move(p.value())).first->second;
 }
