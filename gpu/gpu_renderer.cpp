@@ -276,6 +276,8 @@ SpecKey culledSpecKey(SpecKey k, const std::vector<bool>& inReach) {
 SpecKey surfaceLightsSpecKey(SpecKey k, const CompiledScene& cs, const LightReach& reach) {
     static_assert(shd::SURFACE_LIGHT_SLOTS <= 15, "SPEC_SURFACE_LIGHTS holds the count in 4 bits");
     static_assert(4 + 2 * shd::SURFACE_LIGHT_SLOTS <= 31, "SPEC_SURFACE_LIGHTS holds 2 bits a slot from bit 4");
+    static_assert(shd::LIGHT_DIRECTIONAL >= 0 && shd::LIGHT_POINT < 4 && shd::LIGHT_SPOT < 4,
+                  "a slot's LIGHT_* fits its 2 bits");
     const size_t n = reach.surfaceLights.size();
     if (n > static_cast<size_t>(shd::SURFACE_LIGHT_SLOTS)) return k;
     int spec = static_cast<int>(n);

@@ -71,7 +71,8 @@ public:
 
 private:
     RenderPassOwner renderPass_;
-    // Shading pipelines by specialization key, shapes variant and sphere proxies or triangles.
+    // Shading pipelines by specialization key (the constants the geometry shaders read: constantsReadBy),
+    // shapes variant and sphere proxies or triangles.
     std::map<std::tuple<SpecKey, bool, bool>, PipelineOwner> pipelines_;
     VkPipeline pipeline_ = VK_NULL_HANDLE;        // the triangles' one usePipeline chose
     VkPipeline spherePipeline_ = VK_NULL_HANDLE;  // the sphere proxies' one (spheres only)

@@ -92,8 +92,9 @@ struct ComputePass {
 Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader,
                                       const SpecKey* spec = nullptr);
 
-// One pipeline per shader variant and specialization key, created on first use (lavapipe compiles a
-// pipeline in 10-100 ms, so a variant a scene never needs is never built).
+// One pipeline per shader variant and specialization key (the constants the shader reads:
+// constantsReadBy), created on first use (lavapipe compiles a pipeline in 10-100 ms, so a variant a
+// scene never needs is never built).
 class PipelineCache {
 public:
     Result<const ComputePass*> get(const Device& device, VkPipelineLayout layout, const std::string& shader,
