@@ -612,10 +612,32 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
     }
 
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
+    auto recorded = [&](const PassDecl& p) {
+        if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) return false;
+        if (p.when == When::SurfacesChanged && reuseSurfaces) return false;
+        return !((p.when == When::VdbScene && !variant.vdb) || (p.when == When::NoVdbScene && variant.vdb));
+    };
+    // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
+    // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
+    auto dispatches = [&](const PassDecl& p) {
+        return p.dispatch != Dispatch::Raster && !(p.record == Record::TemporalCopy && variant.temporalRest) &&
+               !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));
+    };
+    auto specKey = [&](const PassDecl& p) -> const SpecKey* {
+        return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
+    };
+    // The pipelines this frame lacks, made together before it records (pipeline.h PipelineBatch).
+    PipelineBatch batch;
     for (const PassDecl& p : kPasses) {
-        if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) continue;
-        if (p.when == When::SurfacesChanged && reuseSurfaces) continue;
-        if ((p.when == When::VdbScene && !variant.vdb) || (p.when == When::NoVdbScene && variant.vdb)) continue;
+        if (!recorded(p)) continue;
+        if (p.record == Record::Geometry)
+            geometry.request(*device, layout, surfaceSpec, variant.shapes, mesh.sphereVertices > 0, batch);
+        else if (dispatches(p))
+            pipelines.request(*device, layout, variantShaderName(p.shader, p.variant, variant), specKey(p), batch);
+    }
+    BRUME_TRY(batch.run());
+    for (const PassDecl& p : kPasses) {
+        if (!recorded(p)) continue;
         PassContext ctx;
         ctx.cmd = cmd;
         ctx.pass = &p;
@@ -629,17 +651,12 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         ctx.cameraFar = cameraFar;
         ctx.triangleVertices = mesh.triangleVertices;
         ctx.sphereVertices = mesh.sphereVertices;
-        // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
         ctx.readBackVolumes = readBackVolumes;
         ctx.poisonIntegrated = poisonIntegrated;
         ctx.poisonSource = poisonSource;
-        // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
-        const bool dispatches = !(p.record == Record::TemporalCopy && variant.temporalRest) &&
-                                !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));
-        if (p.dispatch != Dispatch::Raster && dispatches) {
-            const SpecKey* key = !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
+        if (dispatches(p)) {
             Result<const ComputePass*> pipeline =
-                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), key);
+                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), specKey(p));
             if (!pipeline) return pipeline.error();
             ctx.pipeline = pipeline.value();
         }

@@ -75,14 +75,9 @@ Result<void> GpuRenderer::State::createPasses() {
     Result<GeometryPass> g = GeometryPass::create(*device, layout);
     if (!g) return g.error();
     geometry = std::move(g.value());
-    // Every pass's plain variant now, so that a broken build fails here and the first frame is not
-    // slower than the next; the others when a scene first needs them.
-    for (const PassDecl& p : kPasses) {
-        // The vdb place of the shadow volume (shadow_volume_vdb) only when a scene with vdb volumes needs it.
-        if (p.dispatch == Dispatch::Raster || p.when == When::VdbScene) continue;
-        Result<const ComputePass*> pass = pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, {}));
-        if (!pass) return pass.error();
-    }
+    // No pass's pipeline yet: each frame makes the ones its keys need and the cache lacks, together
+    // (frame_executor.cpp recordFrame). A pipeline of the shaders' default constants would rarely be one
+    // a scene uses, and lavapipe spends 10-250 ms on each.
     Result<PassTimer> t = PassTimer::create(*device, kMaxPasses);
     if (!t) return t.error();
     timer = std::move(t.value());

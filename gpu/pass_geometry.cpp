@@ -1,5 +1,6 @@
 #include "geometry_mesh.h"
 #include "passes.h"
+#include "spirv.h"
 #include "vk_check.h"
 
 #include <algorithm>
@@ -144,28 +145,62 @@ Result<GeometryPass> GeometryPass::create(const Device& device, VkPipelineLayout
         createPipeline(device, layout, pass.renderPass_.get(), SpecKey{}, "geometry.vert", nullptr, true);
     if (!depthOnly) return depthOnly.error();
     pass.depthPipeline_ = std::move(depthOnly.value());
-    BRUME_TRY(pass.usePipeline(device, layout, SpecKey{}, false, false));
     return pass;
+}
+
+namespace {
+
+// The shading pipelines' key: only the constants these shaders read, so that the editor's coarse and
+// full frames, whose keys differ in the froxel passes' constants, share their pipelines (a new set of
+// surface lights builds one).
+SpecKey geometryKey(const SpecKey& sceneKey, bool shapes) {
+    return shapes ? constantsReadBy(sceneKey, {"geometry_shapes.frag", "geometry_sphere_shapes.frag"})
+                  : constantsReadBy(sceneKey, {"geometry.frag", "geometry_sphere.frag"});
+}
+
+const char* shadingVertex(bool sphere) { return sphere ? "geometry_sphere.vert" : "geometry.vert"; }
+
+const char* shadingFragment(bool shapes, bool sphere) {
+    return sphere ? (shapes ? "geometry_sphere_shapes.frag" : "geometry_sphere.frag")
+                  : (shapes ? "geometry_shapes.frag" : "geometry.frag");
+}
+
+}  // namespace
+
+void GeometryPass::request(const Device& device, VkPipelineLayout layout, const SpecKey& sceneKey, bool shapes,
+                           bool spheres, PipelineBatch& batch) {
+    const SpecKey key = geometryKey(sceneKey, shapes);
+    for (bool sphere : {false, true}) {
+        if (sphere && !spheres) break;
+        auto [it, added] = pipelines_.emplace(std::tuple{key, shapes, sphere}, PipelineOwner{});
+        if (!added) continue;  // made, or requested by a batch that failed: usePipeline reports why
+        // The entry's address stays put while the batch runs (std::map), and only this job writes it.
+        PipelineOwner* out = &it->second;
+        const VkRenderPass renderPass = renderPass_.get();
+        batch.add(
+            [&device, layout, renderPass, key, shapes, sphere, out]() -> Result<void> {
+                Result<PipelineOwner> p = createPipeline(device, layout, renderPass, key, shadingVertex(sphere),
+                                                         shadingFragment(shapes, sphere), false);
+                if (!p) return p.error();
+                *out = std::move(p.value());
+                return {};
+            },
+            embeddedSpirv(shadingVertex(sphere)).size() + embeddedSpirv(shadingFragment(shapes, sphere)).size());
+    }
 }
 
 Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& sceneKey,
                                        bool shapes, bool spheres) {
-    // Only the constants these shaders read: the editor's coarse and full frames, whose keys differ in
-    // the froxel passes' constants, share their pipelines (a new set of surface lights builds one).
-    const SpecKey key = shapes ? constantsReadBy(sceneKey, {"geometry_shapes.frag", "geometry_sphere_shapes.frag"})
-                               : constantsReadBy(sceneKey, {"geometry.frag", "geometry_sphere.frag"});
+    const SpecKey key = geometryKey(sceneKey, shapes);
     auto shading = [&](bool sphere) -> Result<VkPipeline> {
-        auto it = pipelines_.find({key, shapes, sphere});
-        if (it == pipelines_.end()) {
-            const char* fragment = sphere ? (shapes ? "geometry_sphere_shapes.frag" : "geometry_sphere.frag")
-                                          : (shapes ? "geometry_shapes.frag" : "geometry.frag");
-            Result<PipelineOwner> pipeline =
-                createPipeline(device, layout, renderPass_.get(), key, sphere ? "geometry_sphere.vert" : "geometry.vert",
-                               fragment, false);
+        PipelineOwner& slot = pipelines_[{key, shapes, sphere}];
+        if (!slot) {
+            Result<PipelineOwner> pipeline = createPipeline(device, layout, renderPass_.get(), key, shadingVertex(sphere),
+                                                            shadingFragment(shapes, sphere), false);
             if (!pipeline) return pipeline.error();
-            it = pipelines_.emplace(std::tuple{key, shapes, sphere}, std::move(pipeline.value())).first;
+            slot = std::move(pipeline.value());
         }
-        return it->second.get();
+        return slot.get();
     };
     Result<VkPipeline> triangles = shading(false);
     if (!triangles) return triangles.error();

@@ -65,6 +65,10 @@ public:
     // (frame_table.h VariantKey::shapes); those of the sphere proxies too when `spheres`.
     Result<void> usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes,
                              bool spheres);
+    // Adds to `batch` the creation of the shading pipelines usePipeline with these arguments would
+    // create (pipeline.h PipelineBatch); run it before the next usePipeline or request.
+    void request(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes, bool spheres,
+                 PipelineBatch& batch);
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
     void record(const PassContext& ctx) const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <thread>
 #include <vector>
 
 #include "frame_resources.h"
@@ -280,17 +282,69 @@ Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout lay
     return pass;
 }
 
-Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLayout layout, const std::string& shader,
-                                              const SpecKey* spec) {
+namespace {
+
+// The cache's name for the pipeline of `shader` specialized by the constants of `spec` it reads.
+std::pair<std::string, std::optional<SpecKey>> cacheKey(const std::string& shader, const SpecKey* spec) {
     // Keyed by the constants the shader reads: keys that differ only in others (the editor's coarse and
     // full frames) share a pipeline.
     std::optional<SpecKey> read;
     if (spec) read = constantsReadBy(*spec, {shader.c_str()});
-    const std::string key = read ? shader + "#" + read->text() : shader;
-    if (auto it = passes_.find(key); it != passes_.end()) return &it->second;
+    return {read ? shader + "#" + read->text() : shader, read};
+}
+
+}  // namespace
+
+Result<void> PipelineBatch::run() {
+    std::vector<Job> jobs = std::move(jobs_);
+    jobs_.clear();
+    if (jobs.empty()) return {};
+    std::vector<size_t> order(jobs.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return jobs[a].cost > jobs[b].cost; });
+    std::vector<std::optional<Error>> failed(jobs.size());
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t k = next++; k < order.size(); k = next++)
+            if (Result<void> r = jobs[order[k]].create(); !r) failed[order[k]] = r.error();
+    };
+    const size_t threads = std::min<size_t>(jobs.size(), std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<std::thread> helpers;
+    for (size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+    work();
+    for (std::thread& h : helpers) h.join();
+    for (std::optional<Error>& e : failed)
+        if (e) return std::move(*e);
+    return {};
+}
+
+Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLayout layout, const std::string& shader,
+                                              const SpecKey* spec) {
+    auto [key, read] = cacheKey(shader, spec);
+    auto it = passes_.find(key);
+    if (it != passes_.end() && it->second.pipeline) return &it->second;
     Result<ComputePass> p = createComputePass(device, layout, shader, read ? &*read : nullptr);
     if (!p) return p.error();
-    return &passes_.emplace(key, std::move(p.value())).first->second;
+    if (it == passes_.end()) it = passes_.emplace(key, ComputePass{}).first;
+    it->second = std::move(p.value());
+    return &it->second;
+}
+
+void PipelineCache::request(const Device& device, VkPipelineLayout layout, const std::string& shader,
+                            const SpecKey* spec, PipelineBatch& batch) {
+    auto [key, read] = cacheKey(shader, spec);
+    auto [it, added] = passes_.emplace(key, ComputePass{});
+    if (!added) return;  // made, or requested by an earlier batch that failed: get() reports why
+    // The entry's address stays put while the batch runs (std::map), and only this job writes it.
+    ComputePass* out = &it->second;
+    batch.add(
+        [&device, layout, shader, read = std::move(read), out]() -> Result<void> {
+            Result<ComputePass> p = createComputePass(device, layout, shader, read ? &*read : nullptr);
+            if (!p) return p.error();
+            *out = std::move(p.value());
+            return {};
+        },
+        embeddedSpirv(shader).size());
 }
 
 void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings) {

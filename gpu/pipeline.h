@@ -5,6 +5,7 @@
 #include <array>
 #include <compare>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <map>
 #include <span>
@@ -92,17 +93,45 @@ struct ComputePass {
 Result<ComputePass> createComputePass(const Device& device, VkPipelineLayout layout, const std::string& shader,
                                       const SpecKey* spec = nullptr);
 
+// Pipelines to create at once before a frame records. Lavapipe compiles a pipeline on the thread that
+// creates it (10-250 ms each), so a frame that needs several new ones (a scene's first frame, an edit
+// that changes a key) waits for about their sum over the cores instead of their sum. Each job writes
+// only its own result; the caches hand out a result only once it is made (PipelineCache::get).
+class PipelineBatch {
+public:
+    // cost: any measure that grows with the job's compile time (the SPIR-V's size of its shaders): the
+    // longest start first, so that no core is left with a long one at the end.
+    void add(std::function<Result<void>()> job, size_t cost) { jobs_.push_back({std::move(job), cost}); }
+    size_t size() const { return jobs_.size(); }
+    // Runs every job, on up to one thread per core, and waits for them all; the first failed job's
+    // error (in the order added), after every job has finished.
+    Result<void> run();
+
+private:
+    struct Job {
+        std::function<Result<void>()> create;
+        size_t cost;
+    };
+    std::vector<Job> jobs_;
+};
+
 // One pipeline per shader variant and specialization key (the constants the shader reads:
-// constantsReadBy), created on first use (lavapipe compiles a pipeline in 10-100 ms, so a variant a
-// scene never needs is never built).
+// constantsReadBy), created on first use (lavapipe compiles a pipeline in 10-250 ms, so a variant a
+// scene never needs is never built), or ahead of it in a batch with others (request).
 class PipelineCache {
 public:
     Result<const ComputePass*> get(const Device& device, VkPipelineLayout layout, const std::string& shader,
                                    const SpecKey* spec = nullptr);
+    // Adds to `batch` the creation of the pipeline that get() with these arguments returns, unless it
+    // exists or is already in a batch. Run the batch before the next get() or request().
+    void request(const Device& device, VkPipelineLayout layout, const std::string& shader, const SpecKey* spec,
+                 PipelineBatch& batch);
     size_t size() const { return passes_.size(); }
 
 private:
-    std::map<std::string, ComputePass> passes_;  // by shader name, plus "#" and the key when specialized
+    // By shader name, plus "#" and the key when specialized. An entry whose pipeline is null was
+    // requested and not (yet, or successfully) made: get() makes it then.
+    std::map<std::string, ComputePass> passes_;
 };
 
 void bindComputePass(VkCommandBuffer cmd, const ComputePass& pass, const DescriptorBindings& bindings);

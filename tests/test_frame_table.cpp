@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "glslang_support.h"
 #include "gpu/frame_table.h"
@@ -281,4 +284,48 @@ TEST(FrameTable, GeometryKeysKeepTheConstantsTheGeometryShadersRead) {
     }
     // A shader that reads none keeps none.
     EXPECT_EQ(constantsReadBy(key, {"geometry.vert"}), SpecKey{});
+}
+
+// PipelineBatch (gpu/pipeline.h) compiles a frame's missing pipelines at once. Two jobs that each wait
+// for the other to start finish only if they run at the same time; a sequential batch fails them after
+// the wait's bound rather than hanging.
+TEST(PipelineBatch, RunsItsJobsOnSeveralCoresAtOnce) {
+    if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: the batch runs its jobs in turn";
+    std::atomic<int> started{0};
+    auto meetTheOther = [&]() -> Result<void> {
+        ++started;
+        const auto bound = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (started.load() < 2)
+            if (std::chrono::steady_clock::now() > bound) return Error{"the other job did not start"};
+            else std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        return {};
+    };
+    PipelineBatch batch;
+    batch.add(meetTheOther, 1);
+    batch.add(meetTheOther, 1);
+    Result<void> r = batch.run();
+    EXPECT_TRUE(r.ok()) << r.error().message;
+}
+
+// Every job runs even when some fail; the error is the first failed job's in the order added (not in
+// the order run: the costliest first), and a run leaves the batch empty.
+TEST(PipelineBatch, RunsEveryJobAndReportsTheFirstFailureInTheOrderAdded) {
+    std::atomic<int> ran{0};
+    PipelineBatch batch;
+    for (int i = 0; i < 6; ++i)
+        batch.add(
+            [&ran, i]() -> Result<void> {
+                ++ran;
+                if (i == 2 || i == 4) return Error{"job " + std::to_string(i) + " failed"};
+                return {};
+            },
+            static_cast<size_t>(i));  // job 4 runs before job 2
+    EXPECT_EQ(batch.size(), 6u);
+    Result<void> r = batch.run();
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "job 2 failed");
+    EXPECT_EQ(ran.load(), 6);
+    EXPECT_EQ(batch.size(), 0u);
+    EXPECT_TRUE(batch.run().ok());
+    EXPECT_EQ(ran.load(), 6);
 }

@@ -15,10 +15,14 @@ double percentile(std::vector<double> v, double p) {
     return v[std::clamp<size_t>(rank, 1, v.size()) - 1];
 }
 
-std::string line(const char* label, const std::vector<double>& ms) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%-7s %4zu frames: median %8.1f ms, p95 %8.1f ms", label, ms.size(),
-                  percentile(ms, 0.5), percentile(ms, 0.95));
+// The median and p95, and the slowest frame with its number (counted from 1, the first included):
+// a hitch, such as a pipeline compiled mid-drag, shows there rather than in the median.
+std::string line(const char* label, const std::vector<double>& ms, const std::vector<int>& frame) {
+    char buf[200];
+    const size_t slowest = static_cast<size_t>(std::max_element(ms.begin(), ms.end()) - ms.begin());
+    std::snprintf(buf, sizeof buf, "%-7s %4zu frames: median %8.1f ms, p95 %8.1f ms, max %8.1f ms (frame %d)", label,
+                  ms.size(), percentile(ms, 0.5), percentile(ms, 0.95), ms.empty() ? 0.0 : ms[slowest],
+                  ms.empty() ? 0 : frame[slowest]);
     return buf;
 }
 
@@ -29,6 +33,7 @@ void FrameStats::add(const std::string& kind, double frameMs, const std::vector<
     if (++frames_ == 1) return;  // the first frame also compiles the shaders
     for (Samples* s : {&all_, &byKind_[kind]}) {
         s->frameMs.push_back(frameMs);
+        s->frame.push_back(frames_);
         auto put = [s](const std::string& name, double ms) {
             if (ms < 0.0) return;
             if (!s->passMs.count(name)) s->passOrder.push_back(name);
@@ -43,9 +48,9 @@ void FrameStats::addCoarseScale(double scale) { scales_.push_back(scale); }
 void FrameStats::addSettle(double ms) { settleMs_.push_back(ms); }
 
 std::string FrameStats::report() const {
-    std::string out = "bench: frame wall time (frames after the first)\n  " + line("all", all_.frameMs) + "\n";
+    std::string out = "bench: frame wall time (frames after the first)\n  " + line("all", all_.frameMs, all_.frame) + "\n";
     for (const auto& [kind, s] : byKind_) {
-        out += "  " + line(kind.c_str(), s.frameMs) + "\n";
+        out += "  " + line(kind.c_str(), s.frameMs, s.frame) + "\n";
         if (s.passOrder.empty()) continue;
         out += "    median ms:";
         for (const std::string& name : s.passOrder) {

@@ -1,7 +1,7 @@
 // brume-editor --bench: every frame's wall time and, for frames that rendered, the renderer's
-// per-pass GPU times and the window's present time; printed at exit as median and p95 per kind of
-// frame (coarse while interacting, full at rest, UI only), skipping the first (it compiles shaders);
-// also the coarse frames' scale and how long the view took to settle after an interaction.
+// per-pass GPU times and the window's present time; printed at exit as median, p95 and the slowest
+// frame per kind of frame (coarse while interacting, full at rest, UI only), skipping the first (it
+// compiles shaders); also the coarse frames' scale and how long the view took to settle after an interaction.
 #pragma once
 
 #include <map>
@@ -26,6 +26,7 @@ public:
 private:
     struct Samples {
         std::vector<double> frameMs;
+        std::vector<int> frame;  // each sample's frame number, counted from 1
         std::map<std::string, std::vector<double>> passMs;
         std::vector<std::string> passOrder;
     };

@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
     const Setting& budget = settings::editor_frame_budget_ms;
     app.add_option("--frame-budget-ms", o.frameBudgetMs, std::string(budget.help) + " [ms]")
         ->check(CLI::Range(budget.min, budget.max));
-    app.add_flag("--bench", o.bench, "At exit, print the median and p95 frame time and the per-pass times (use with --script or --frames).");
+    app.add_flag("--bench", o.bench, "At exit, print the median, p95 and slowest frame time and the per-pass times (use with --script or --frames).");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
