@@ -571,6 +571,33 @@ void dispatchPass(const PassContext& ctx) {
     }
 }
 
+bool FramePasses::records(const PassDecl& p) const {
+    if (p.when == When::DebugView && !debugView) return false;
+    if (p.when == When::SurfacesChanged && reuseSurfaces) return false;
+    return !((p.when == When::VdbScene && !variant.vdb) || (p.when == When::NoVdbScene && variant.vdb));
+}
+
+bool FramePasses::dispatches(const PassDecl& p) const {
+    // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
+    // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
+    return records(p) && p.dispatch != Dispatch::Raster && !(p.record == Record::TemporalCopy && variant.temporalRest) &&
+           !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));
+}
+
+const SpecKey* GpuRenderer::State::passKey(const PassDecl& p) const {
+    return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
+}
+
+void GpuRenderer::State::requestPipelines(const FramePasses& passes, PipelineBatch& batch) {
+    const VkPipelineLayout layout = bindings.pipelineLayout.get();
+    for (const PassDecl& p : kPasses) {
+        if (p.record == Record::Geometry && passes.records(p))
+            geometry.request(*device, layout, surfaceSpec, passes.variant.shapes, passes.spheres, batch);
+        else if (passes.dispatches(p))
+            pipelines.request(*device, layout, variantShaderName(p.shader, p.variant, passes.variant), passKey(p), batch);
+    }
+}
+
 Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar,
                                              bool readBackVolumes, int historyWriteIndex) {
     timer.reset(cmd);
@@ -612,32 +639,14 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
     }
 
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
-    auto recorded = [&](const PassDecl& p) {
-        if (p.when == When::DebugView && debugParams.view.x == shd::DEBUG_VIEW_FINAL) return false;
-        if (p.when == When::SurfacesChanged && reuseSurfaces) return false;
-        return !((p.when == When::VdbScene && !variant.vdb) || (p.when == When::NoVdbScene && variant.vdb));
-    };
-    // At rest the temporal pass dispatches nothing (integrate_rest resolves the history): no pipeline.
-    // Without vdb volumes voxelize dispatches only for the read-back volumes (voxelizeDispatches).
-    auto dispatches = [&](const PassDecl& p) {
-        return p.dispatch != Dispatch::Raster && !(p.record == Record::TemporalCopy && variant.temporalRest) &&
-               !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));
-    };
-    auto specKey = [&](const PassDecl& p) -> const SpecKey* {
-        return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
-    };
+    const FramePasses passes{variant, debugParams.view.x != shd::DEBUG_VIEW_FINAL, reuseSurfaces, readBackVolumes,
+                             mesh.sphereVertices > 0};
     // The pipelines this frame lacks, made together before it records (pipeline.h PipelineBatch).
     PipelineBatch batch;
-    for (const PassDecl& p : kPasses) {
-        if (!recorded(p)) continue;
-        if (p.record == Record::Geometry)
-            geometry.request(*device, layout, surfaceSpec, variant.shapes, mesh.sphereVertices > 0, batch);
-        else if (dispatches(p))
-            pipelines.request(*device, layout, variantShaderName(p.shader, p.variant, variant), specKey(p), batch);
-    }
+    requestPipelines(passes, batch);
     BRUME_TRY(batch.run());
     for (const PassDecl& p : kPasses) {
-        if (!recorded(p)) continue;
+        if (!passes.records(p)) continue;
         PassContext ctx;
         ctx.cmd = cmd;
         ctx.pass = &p;
@@ -654,9 +663,9 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         ctx.readBackVolumes = readBackVolumes;
         ctx.poisonIntegrated = poisonIntegrated;
         ctx.poisonSource = poisonSource;
-        if (dispatches(p)) {
+        if (passes.dispatches(p)) {
             Result<const ComputePass*> pipeline =
-                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), specKey(p));
+                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), passKey(p));
             if (!pipeline) return pipeline.error();
             ctx.pipeline = pipeline.value();
         }

@@ -16,6 +16,17 @@
 
 namespace brume::gpu {
 
+// What decides which passes a frame records and which pipelines they use (frame_table.h kPasses).
+struct FramePasses {
+    VariantKey variant;
+    bool debugView = false;        // a debug view replaces the image (When::DebugView)
+    bool reuseSurfaces = false;    // the frame keeps the surfaces (When::SurfacesChanged)
+    bool readBackVolumes = false;  // voxelize fills the media images for the read-back volumes
+    bool spheres = false;          // the geometry has sphere proxies (their own pipelines)
+    bool records(const PassDecl& p) const;
+    bool dispatches(const PassDecl& p) const;  // recorded, and with a compute pipeline this frame
+};
+
 // Declaration order is destruction order reversed: the device outlives everything it owns.
 struct GpuRenderer::State {
     std::unique_ptr<Device> device;
@@ -74,6 +85,10 @@ struct GpuRenderer::State {
     Result<void> chooseVariant(const CompiledScene& cs);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes, bool readBackVolumes);
+    // The key a pass's pipeline is specialized with (null: none; PassDecl::specialized).
+    const SpecKey* passKey(const PassDecl& p) const;
+    // Adds to `batch` the pipelines such a frame's passes use and the caches lack.
+    void requestPipelines(const FramePasses& passes, PipelineBatch& batch);
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage
