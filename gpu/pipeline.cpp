@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -305,12 +307,25 @@ Result<void> PipelineBatch::run() {
     std::vector<std::optional<Error>> failed(jobs.size());
     std::atomic<size_t> next{0};
     auto work = [&] {
-        for (size_t k = next++; k < order.size(); k = next++)
-            if (Result<void> r = jobs[order[k]].create(); !r) failed[order[k]] = r.error();
+        for (size_t k = next++; k < order.size(); k = next++) {
+            const size_t i = order[k];
+            // An exception must not leave a helper thread (std::terminate): it becomes the job's error.
+            try {
+                if (Result<void> r = jobs[i].create(); !r) failed[i] = r.error();
+            } catch (const std::exception& e) {
+                failed[i] = Error{std::string("A shader pipeline could not be created: ") + e.what() + "."};
+            }
+        }
     };
     const size_t threads = std::min<size_t>(jobs.size(), std::max(1u, std::thread::hardware_concurrency()));
     std::vector<std::thread> helpers;
-    for (size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+    for (size_t t = 1; t < threads; ++t) {
+        try {
+            helpers.emplace_back(work);
+        } catch (const std::system_error&) {
+            break;  // no thread to spare: this one takes the jobs the helper would have
+        }
+    }
     work();
     for (std::thread& h : helpers) h.join();
     for (std::optional<Error>& e : failed)

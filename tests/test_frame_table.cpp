@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -328,4 +329,23 @@ TEST(PipelineBatch, RunsEveryJobAndReportsTheFirstFailureInTheOrderAdded) {
     EXPECT_EQ(batch.size(), 0u);
     EXPECT_TRUE(batch.run().ok());
     EXPECT_EQ(ran.load(), 6);
+}
+
+// A job that throws (out of memory in a helper thread) is that job's error, one sentence, not the end
+// of the process; the other jobs still run.
+TEST(PipelineBatch, AJobThatThrowsIsItsErrorAndTheOthersRun) {
+    std::atomic<int> ran{0};
+    PipelineBatch batch;
+    batch.add([]() -> Result<void> { throw std::runtime_error("no memory left"); }, 2);
+    for (int i = 0; i < 3; ++i)
+        batch.add(
+            [&ran]() -> Result<void> {
+                ++ran;
+                return {};
+            },
+            1);
+    Result<void> r = batch.run();
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "A shader pipeline could not be created: no memory left.");
+    EXPECT_EQ(ran.load(), 3);
 }
