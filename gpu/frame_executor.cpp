@@ -644,6 +644,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
     // The pipelines this frame lacks, made together before it records (pipeline.h PipelineBatch).
     PipelineBatch batch;
     requestPipelines(passes, batch);
+    compiled = compiled || batch.size() > 0;
     BRUME_TRY(batch.run());
     for (const PassDecl& p : kPasses) {
         if (!passes.records(p)) continue;

@@ -374,6 +374,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     if (request.width < 1 || request.height < 1)
         return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
                      std::to_string(request.height) + "."};
+    s_->compiled = false;
     CompiledScene cs = compileScene(scene);
     applyVdbCullingSettings(cs, request);
     const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
@@ -519,6 +520,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     out.skippedFroxels = size_t(int64_t(dims.x) * dims.y * dims.z) - out.litFroxels;
     out.overfullClusters = clusters.overfullClusters;
     out.allocated = s_->allocated;
+    out.compiled = s_->compiled;
     Result<std::vector<PassTiming>> timings = s_->timer.read();
     if (!timings) return timings.error();
     out.passes = std::move(timings.value());

@@ -28,6 +28,9 @@ struct GpuRender {
     // This call allocated froxel volumes or screen images (a first render, or a size seen neither
     // last nor parked: gpu/renderer_state.h); fresh memory costs its first touch in the passes.
     bool allocated = false;
+    // This call created shader pipelines (a first frame, or specialization keys not seen before:
+    // lavapipe takes 10-250 ms each), so its time is not what such a frame costs.
+    bool compiled = false;
 };
 
 // The last frame's output image on the device (after renderOnDevice): rgba32f, in

@@ -68,6 +68,7 @@ struct GpuRenderer::State {
     // hundreds of MiB (parkSizedResources). Only its sized members are used (swapSizedResources).
     FrameResources parked;
     bool allocated = false;  // this render's prepare allocated sized resources (GpuRender::allocated)
+    bool compiled = false;   // this render created pipelines (GpuRender::compiled)
 
     Result<void> createCommands();
     Result<void> createPasses();

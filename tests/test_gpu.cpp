@@ -969,6 +969,32 @@ TEST_F(GpuTest, BackAtAParkedSizeAllocatesNothingAndRendersAsAFreshRenderer) {
     EXPECT_FALSE(bigAgain.value().allocated);
 }
 
+// GpuRender::compiled says whether a render created pipelines, so that the editor does not take such
+// a frame's time for what the next frames cost (app/editor/editor.cpp, the coarse scale): the first
+// render does; the same scene again does not; a light added in view changes the geometry pass's key
+// (its surface lights) and does once; a light of that kind moved within the view does not.
+TEST_F(GpuTest, ARenderSaysWhetherItCompiledPipelines) {
+    Scene s = baseScene();
+    s.volumes = {box()};
+    s.lights = {sun()};
+    s.geometry = ground();
+    const RenderRequest request = smallRequest();
+    auto compiled = [&](const Scene& scene) {
+        auto r = renderer->render(scene, request);
+        EXPECT_TRUE(r.ok()) << r.error().message;
+        return r.ok() && r.value().compiled;
+    };
+    EXPECT_TRUE(compiled(s));
+    EXPECT_FALSE(compiled(s));
+    Scene lit = s;
+    lit.lights.push_back(pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f}));
+    EXPECT_TRUE(compiled(lit));
+    EXPECT_FALSE(compiled(lit));
+    lit.lights[1].position.x += 0.2f;
+    EXPECT_FALSE(compiled(lit));
+    EXPECT_FALSE(compiled(s)) << "the first scene's pipelines are kept";
+}
+
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {
     GpuOptions options;
     options.device = "no such gpu 1234";

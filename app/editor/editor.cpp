@@ -269,7 +269,9 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     if (!out) return out.error();
     viewSize_ = glm::ivec2(width, height);
     coarse_ = plan.coarse;
-    measureFrame_ = plan.steady;
+    // A frame that compiled pipelines or allocated memory is no measure of the next ones: it must not
+    // shrink the coarse scale for the rest of the interaction (accumulation.h Interaction::measured).
+    measureFrame_ = plan.steady && !out.value().compiled && !out.value().allocated;
     shownScale_ = plan.scale;
     ++renders_;
     if (debug_.view != shd::DEBUG_VIEW_FINAL) debug_.legend = debugViewLegend(visibleScene(doc_.scene()), request);
