@@ -95,6 +95,7 @@ struct Presenter::State {
     Result<void> createSwapchain();
     Result<void> createCommands();
     Result<void> initImGui();
+    Result<void> warmUpscale();
     Result<void> ensureSourceDisplay(glm::ivec2 size);
     Result<void> ensureBuffer(gpu::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, gpu::Memory memory,
                               const char* name);
@@ -336,6 +337,7 @@ Result<std::unique_ptr<Presenter>> Presenter::create(GLFWwindow* window, const g
     BRUME_TRY(s->createSwapchain());
     BRUME_TRY(s->createCommands());
     BRUME_TRY(s->initImGui());
+    BRUME_TRY(s->warmUpscale());
     return std::unique_ptr<Presenter>(new Presenter(std::move(s)));
 }
 
@@ -379,6 +381,52 @@ VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayo
 }
 
 }  // namespace
+
+// Lavapipe compiles the shader of a blit the first time it runs one with those formats, filter and
+// kind of source (its sampler's variant knows whether the width and height are powers of two): 40-60
+// ms on the first coarse frame of a session (its "present: upscale"), against ~4 after. One linear
+// blit of a tiny 3x3 image (not a power of two, as a coarse image rarely is) of the coarse image's
+// format over a window image, at start, pays it before anyone drags.
+Result<void> Presenter::State::warmUpscale() {
+    if (!canBlit) return {};  // the Upscale path is never taken (PresentPath)
+    Result<gpu::GpuImage> small = gpu::createImage(device, VkExtent3D{3, 3, 1}, false, format.format,
+                                                   VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                                       VK_IMAGE_USAGE_SAMPLED_BIT,
+                                                   "upscale warm-up source");
+    if (!small) return small.error();
+    // Into a window image (it is written whole before it is first shown), at the window's size.
+    const VkImage src = small.value().image.get(), dst = images.front();
+    VkCommandBufferBeginInfo begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    BRUME_VK(vkBeginCommandBuffer(cmd, &begin), "record the upscale warm-up");
+    const std::array<VkImageMemoryBarrier, 2> toWrite{
+        imageBarrier(src, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT),
+        imageBarrier(dst, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, VK_ACCESS_TRANSFER_WRITE_BIT)};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                         static_cast<uint32_t>(toWrite.size()), toWrite.data());
+    const VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &all);
+    const VkImageMemoryBarrier toRead = imageBarrier(src, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                                     VK_ACCESS_TRANSFER_READ_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1,
+                         &toRead);
+    VkImageBlit blit{};  // as record's Upscale: the coarse image scaled up, linear
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {3, 3, 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {static_cast<int32_t>(extent.width), static_cast<int32_t>(extent.height), 1};
+    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                   VK_FILTER_LINEAR);
+    BRUME_VK(vkEndCommandBuffer(cmd), "record the upscale warm-up");
+    VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    BRUME_VK(vkQueueSubmit(device.queue(), 1, &submit, VK_NULL_HANDLE), "run the upscale warm-up");
+    BRUME_VK(vkQueueWaitIdle(device.queue()), "run the upscale warm-up");
+    return {};
+}
 
 // Records: the renderer's output -> window pixels (display pass, or the background colour before
 // any render) -> window image (transfer), or for a coarse frame (PresentPath::Upscale) the output ->
