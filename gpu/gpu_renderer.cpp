@@ -365,27 +365,99 @@ std::vector<uint8_t> surfaceInputs(shd::FrameUniforms frame, const FrameResource
 
 }  // namespace
 
+namespace {
+
+// What a call's frames share, from the scene and the request alone (no resource is touched): the
+// compiled scene, the frame's uniforms before the jitter, the meshes, the lights' clusters and reach,
+// and the specialization keys.
+struct FramePlan {
+    CompiledScene cs;
+    FroxelSettings fs;
+    shd::FrameUniforms frame{};
+    glm::ivec3 dims{0};
+    GeometryMesh mesh;
+    LightClusters clusters;
+    FroxelRegion media;  // the froxels that can hold media (core/media_region.h)
+    LightReach lightReach;
+    SpecKey spec, froxelSpec, surfaceSpec;  // State's members of the same names
+};
+
+Result<FramePlan> planFrames(const Scene& scene, const RenderRequest& request, const Device& device, bool froxelRegions) {
+    if (request.width < 1 || request.height < 1)
+        return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
+                     std::to_string(request.height) + "."};
+    FramePlan p;
+    p.cs = compileScene(scene);
+    CompiledScene& cs = p.cs;
+    applyVdbCullingSettings(cs, request);
+    p.fs = resolveFroxelSettings(scene, request.quality);
+    p.frame = makeFrameUniforms(scene, cs, request.width, request.height, p.fs);
+    applyShadowSettings(p.frame, request);
+    applySunShadowSettings(p.frame, cs);
+    applyVdbShadowSettings(p.frame, cs, request);
+    const shd::FrameUniforms& frame = p.frame;
+    p.dims = glm::ivec3(frame.froxelDims);
+    BRUME_TRY(checkLimits(device, request.width, request.height, p.dims));
+    p.mesh = tessellateGeometry(scene.geometry, frame);
+    // The clusters do not depend on the jitter: built once for every frame of the call.
+    p.clusters = buildLightClusters(cs, frame, request.lightCulling);
+    // Voxelize runs over the froxels that can hold media (core/media_region.h). The light pass runs over
+    // the temporal region (the media region and its one-froxel shell, Dispatch::RegionLightRuns), but
+    // the shell's froxels have no media: their S is their emission, 0, whatever their lights and
+    // transmittance cells hold, so the reach and the cells follow the media region's froxels, rounded
+    // up to whole workgroups (the light pass's: runs along z).
+    p.media = froxelRegions ? mediaFroxelRegion(cs, frame) : FroxelRegion{glm::ivec3(0), p.dims};
+    const glm::ivec3 groupSize(shd::LIGHT_GROUP_X, shd::LIGHT_GROUP_Y, shd::LIGHT_RUN);
+    const glm::ivec3 extent = p.media.hi - p.media.lo;
+    const FroxelRegion lightFroxels{p.media.lo, glm::min(p.media.lo + (extent + groupSize - 1) / groupSize * groupSize, p.dims)};
+    p.lightReach = buildLightReach(cs, frame, p.clusters, request.lightCulling, /*surfaces=*/!p.mesh.vertices.empty(),
+                                   &lightFroxels);
+    p.spec = sceneSpecKey(cs, frame, p.lightReach);
+    p.froxelSpec = culledSpecKey(p.spec, froxelVolumesInReach(cs, frame));
+    p.surfaceSpec = surfaceLightsSpecKey(culledSpecKey(p.spec, surfaceVolumesInReach(cs, frame)), cs, p.lightReach);
+    return p;
+}
+
+}  // namespace
+
+Result<bool> GpuRenderer::preparePipelines(const Scene& scene, const RenderRequest& request) {
+    Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
+    if (!planned) return planned.error();
+    const FramePlan& plan = planned.value();
+    Result<VariantKey> variant = variantOf(plan.cs);
+    if (!variant) return variant.error();
+    // requestPipelines reads the keys from the state; each render sets them again before it records.
+    s_->spec = plan.spec;
+    s_->froxelSpec = plan.froxelSpec;
+    s_->surfaceSpec = plan.surfaceSpec;
+    PipelineBatch batch;
+    for (bool rest : {false, true}) {  // the temporal pass in motion or at rest: not known before the frame
+        FramePasses passes{variant.value(), request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
+                           plan.mesh.sphereVertices > 0};
+        passes.variant.temporalRest = rest;
+        s_->requestPipelines(passes, batch);
+    }
+    const bool missing = batch.size() > 0;
+    BRUME_TRY(batch.run());
+    return missing;
+}
+
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
     return renderFrames(scene, request, false, false);
 }
 
 Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequest& request, bool readBackVolumes,
                                             bool readBackImage) {
-    if (request.width < 1 || request.height < 1)
-        return Error{"The image size must be at least 1x1 pixels, not " + std::to_string(request.width) + "x" +
-                     std::to_string(request.height) + "."};
     s_->compiled = false;
-    CompiledScene cs = compileScene(scene);
-    applyVdbCullingSettings(cs, request);
-    const FroxelSettings fs = resolveFroxelSettings(scene, request.quality);
-    shd::FrameUniforms frame = makeFrameUniforms(scene, cs, request.width, request.height, fs);
-    applyShadowSettings(frame, request);
-    applySunShadowSettings(frame, cs);
-    applyVdbShadowSettings(frame, cs, request);
-    const glm::ivec3 dims(frame.froxelDims);
+    Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
+    if (!planned) return planned.error();
+    FramePlan& plan = planned.value();
+    CompiledScene& cs = plan.cs;
+    const FroxelSettings& fs = plan.fs;
+    shd::FrameUniforms frame = plan.frame;
+    const glm::ivec3 dims = plan.dims;
     const glm::ivec2 size(request.width, request.height);
-    BRUME_TRY(checkLimits(*s_->device, request.width, request.height, dims));
-    const GeometryMesh mesh = tessellateGeometry(scene.geometry, frame);
+    const GeometryMesh& mesh = plan.mesh;
 
     // The same map as the CPU froxel renderer's (ray cast on the host); it does not follow the jitter.
     const SunShadowMap& sun = s_->sunShadow.get(cs, scene.geometry, frame, sunShadowMapResolution(request.quality),
@@ -403,28 +475,18 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     if (!cs.influence.samples.empty())
         std::memcpy(static_cast<char*>(r[BufferId::influence].mapped) + sizeof(shd::InfluenceHeader),
                     cs.influence.samples.data(), cs.influence.samples.size() * sizeof(shd::InfluenceSample));
-    // The clusters do not depend on the jitter: built once for every frame of this call.
-    const LightClusters clusters = buildLightClusters(cs, frame, request.lightCulling);
+    const LightClusters& clusters = plan.clusters;
     std::memcpy(r[BufferId::lightClusters].mapped, clusters.records.data(), clusters.records.size() * sizeof(int));
-    // Voxelize runs over the froxels that can hold media (core/media_region.h). The light pass runs over
-    // the temporal region (the media region and its one-froxel shell, Dispatch::RegionLightRuns), but
-    // the shell's froxels have no media: their S is their emission, 0, whatever their lights and
-    // transmittance cells hold, so the reach and the cells follow the media region's froxels, rounded
-    // up to whole workgroups (the light pass's: runs along z).
-    const FroxelRegion media = s_->froxelRegions ? mediaFroxelRegion(cs, frame) : FroxelRegion{glm::ivec3(0), dims};
+    const FroxelRegion media = plan.media;
     r.mediaOrigin = media.lo;
     r.mediaExtent = media.hi - media.lo;
-    const glm::ivec3 groupSize(shd::LIGHT_GROUP_X, shd::LIGHT_GROUP_Y, shd::LIGHT_RUN);
-    const FroxelRegion lightFroxels{media.lo,
-                                    glm::min(media.lo + (r.mediaExtent + groupSize - 1) / groupSize * groupSize, dims)};
-    const LightReach lightReach =
-        buildLightReach(cs, frame, clusters, request.lightCulling, /*surfaces=*/!mesh.vertices.empty(), &lightFroxels);
+    const LightReach& lightReach = plan.lightReach;
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
-    s_->spec = sceneSpecKey(cs, frame, lightReach);
+    s_->spec = plan.spec;
     r.mediaEmits = s_->spec[SpecId::SPEC_EMISSION] != 0;
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
-    s_->froxelSpec = culledSpecKey(s_->spec, froxelVolumesInReach(cs, frame));
-    s_->surfaceSpec = surfaceLightsSpecKey(culledSpecKey(s_->spec, surfaceVolumesInReach(cs, frame)), cs, lightReach);
+    s_->froxelSpec = plan.froxelSpec;
+    s_->surfaceSpec = plan.surfaceSpec;
     writeSurfaceLights(r[BufferId::surfaceLights].mapped, cs.lights, lightReach);
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));

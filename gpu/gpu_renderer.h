@@ -57,6 +57,11 @@ public:
     // The same, but the image stays on the device (GpuRender::image is empty): for the editor's
     // window, which draws outputImage() on device() (gpu/display_pass.h).
     Result<GpuRender> renderOnDevice(const Scene& scene, const RenderRequest& request);
+    // Creates now the pipelines a render of (scene, request) would create (for its temporal pass in
+    // motion and at rest), without rendering: the editor calls it for its next coarse frame while the
+    // view rests, so that the first frame of a drag does not compile (lavapipe: 10-250 ms a pipeline).
+    // Whether any was missing.
+    Result<bool> preparePipelines(const Scene& scene, const RenderRequest& request);
     OutputImage outputImage() const;
     const Device& device() const;
 

@@ -16,6 +16,9 @@
 
 namespace brume::gpu {
 
+// The scene's shader variants (frame_table.h VariantKey); temporalRest is the frame's, left false.
+Result<VariantKey> variantOf(const CompiledScene& cs);
+
 // What decides which passes a frame records and which pipelines they use (frame_table.h kPasses).
 struct FramePasses {
     VariantKey variant;

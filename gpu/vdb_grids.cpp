@@ -67,7 +67,14 @@ Result<void> GpuRenderer::State::ensureVdbGrids(const CompiledScene& cs, bool& d
 // catches scenes built in code). Density textures
 // are always float and read by density_texture.glsl, whatever the variant.
 Result<void> GpuRenderer::State::chooseVariant(const CompiledScene& cs) {
-    variant = VariantKey{};
+    Result<VariantKey> v = variantOf(cs);
+    if (!v) return v.error();
+    variant = v.value();
+    return {};
+}
+
+Result<VariantKey> variantOf(const CompiledScene& cs) {
+    VariantKey variant;
     for (const DensityGridPtr& g : cs.textures) variant.textures = variant.textures || g != nullptr;
     for (const shd::VolumeData& v : cs.volumes) variant.shapes = variant.shapes || shd::needsShapeShadows(v);
     for (const DensityGridPtr& g : cs.grids) {
@@ -79,7 +86,7 @@ Result<void> GpuRenderer::State::chooseVariant(const CompiledScene& cs) {
         variant.encoding = g->encoding();
         variant.vdb = true;
     }
-    return {};
+    return variant;
 }
 
 }  // namespace brume::gpu

@@ -995,6 +995,44 @@ TEST_F(GpuTest, ARenderSaysWhetherItCompiledPipelines) {
     EXPECT_FALSE(compiled(s)) << "the first scene's pipelines are kept";
 }
 
+// GpuRenderer::preparePipelines makes, without rendering, what a render of the same scene and request
+// would compile (the editor's next coarse frame, made while the view rests): that render then compiles
+// nothing, nor does a second preparation, and the image is the one a renderer that did not prepare
+// renders.
+TEST_F(GpuTest, PreparedPipelinesLeaveTheRenderNothingToCompile) {
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
+    s.geometry = ground();
+    RenderRequest coarse = smallRequest();
+    coarse.quality = Quality::Low;
+    Result<bool> prepared = renderer->preparePipelines(s, coarse);
+    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+    EXPECT_TRUE(prepared.value());
+    Result<bool> again = renderer->preparePipelines(s, coarse);
+    ASSERT_TRUE(again.ok()) << again.error().message;
+    EXPECT_FALSE(again.value());
+    auto out = renderer->render(s, coarse);
+    ASSERT_TRUE(out.ok()) << out.error().message;
+    EXPECT_FALSE(out.value().compiled);
+    // The next frame (with history: the temporal pass's other variant) compiles nothing either.
+    RenderRequest next = coarse;
+    next.history = HistoryMode::Continue;
+    auto second = renderer->render(s, next);
+    ASSERT_TRUE(second.ok()) << second.error().message;
+    EXPECT_FALSE(second.value().compiled);
+
+    gpu::GpuOptions options;
+    options.validation = true;
+    auto fresh = gpu::GpuRenderer::create(options);
+    ASSERT_TRUE(fresh.ok()) << fresh.error().message;
+    auto expected = fresh.value()->render(s, coarse);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    EXPECT_TRUE(expected.value().compiled);
+    EXPECT_EQ(relativeMeanAbsError(out.value().image, expected.value().image), 0.0);
+    EXPECT_TRUE(fresh.value()->validationMessages().empty());
+}
+
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {
     GpuOptions options;
     options.device = "no such gpu 1234";

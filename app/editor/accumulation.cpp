@@ -36,14 +36,27 @@ ViewPlan Interaction::plan(uint64_t revision, bool grouping, Quality preset, int
     revision_ = revision;
     ViewPlan p;
     p.coarse = maxScale_ < 1.0 && (grouping || changed);
-    p.quality = p.coarse ? Quality::Low : preset;
-    p.scale = p.coarse ? scale_ : 1.0;
-    p.width = std::max(1, static_cast<int>(std::lround(width * p.scale)));
-    p.height = std::max(1, static_cast<int>(std::lround(height * p.scale)));
+    if (p.coarse) {
+        p = coarsePlan(width, height);
+    } else {
+        p.quality = preset;
+        p.width = std::max(1, width);
+        p.height = std::max(1, height);
+    }
     p.restartHistory = lastCoarse_ && !p.coarse;
     p.steady = p.coarse && lastCoarse_ && p.scale == lastScale_;
     lastCoarse_ = p.coarse;
     lastScale_ = p.scale;
+    return p;
+}
+
+ViewPlan Interaction::coarsePlan(int width, int height) const {
+    ViewPlan p;
+    p.coarse = true;
+    p.quality = Quality::Low;
+    p.scale = scale_;
+    p.width = std::max(1, static_cast<int>(std::lround(width * p.scale)));
+    p.height = std::max(1, static_cast<int>(std::lround(height * p.scale)));
     return p;
 }
 

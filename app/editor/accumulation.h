@@ -67,6 +67,8 @@ public:
     explicit Interaction(double maxScale, double budgetMs = 0.0);
     // Called once per frame, before rendering, with the document's state.
     ViewPlan plan(uint64_t revision, bool grouping, Quality preset, int width, int height);
+    // The plan of the next coarse frame, if an interaction began now (plan() is left as it is).
+    ViewPlan coarsePlan(int width, int height) const;
     // The wall time of a frame that rendered a steady coarse plan (the whole frame: UI, render,
     // present): sets the scale of the next coarse frames.
     void measured(double frameMs);

@@ -242,11 +242,7 @@ Result<void> Editor::viewAction(const Action& a) {
     return {};
 }
 
-Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
-    if (std::exchange(measureFrame_, false)) interaction_.measured(frameMs);
-    const ViewPlan plan = interaction_.plan(doc_.revision(), doc_.grouping(), quality_, width, height);
-    const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
-    if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
+std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan) const {
     RenderRequest request;
     request.width = plan.width;
     request.height = plan.height;
@@ -258,6 +254,26 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
     if (plan.coarse) shown.froxels.tile_px = coarseTilePx(resolveFroxelSettings(shown, Quality::Low).tile_px, plan.scale);
+    return {std::move(shown), request};
+}
+
+Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
+    if (std::exchange(measureFrame_, false)) interaction_.measured(frameMs);
+    const ViewPlan plan = interaction_.plan(doc_.revision(), doc_.grouping(), quality_, width, height);
+    if (std::exchange(prepareCoarse_, false) && !plan.coarse && interaction_.maxScale() < 1.0) {
+        // The frame after one at rest: the pipelines of the next drag's coarse frame are made now, while
+        // the view rests, not on that frame (a new set of lights or volumes, or the session's first).
+        const ViewPlan next = interaction_.coarsePlan(width, height);
+        const CoarseKey k{doc_.revision(), next.width, next.height, debug_.view};
+        if (!(k == prepared_)) {
+            prepared_ = k;
+            const auto [scene, request] = frameFor(next);
+            (void)renderer.preparePipelines(scene, request);  // a failure is the coarse frame's to report
+        }
+    }
+    const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
+    if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
+    const auto [shown, request] = frameFor(plan);
     Result<gpu::GpuRender> out = renderer.renderOnDevice(shown, request);
     accumulation_.rendered(key);  // also after an error: a failing scene is not retried every frame
     hasImage_ = out.ok();
@@ -269,6 +285,7 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     if (!out) return out.error();
     viewSize_ = glm::ivec2(width, height);
     coarse_ = plan.coarse;
+    prepareCoarse_ = !plan.coarse;
     // A frame that compiled pipelines or allocated memory is no measure of the next ones: it must not
     // shrink the coarse scale for the rest of the interaction (accumulation.h Interaction::measured).
     measureFrame_ = plan.steady && !out.value().compiled && !out.value().allocated;
