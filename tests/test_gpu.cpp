@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <numeric>
+#include <optional>
 
 #include "core/geometry.h"
 #include "core/render.h"
@@ -909,15 +910,37 @@ TEST_F(GpuTest, ResizingBetweenRendersKeepsResultsCorrect) {
     EXPECT_LT(relativeMeanAbsError(gpu.value().image, renderFroxelCpu(s, other).image), kTolerance);
 }
 
+// The render by a new renderer with the validation layer on (nothing left from earlier calls); a
+// failure or a validation message fails the test.
+std::optional<gpu::GpuRender> renderByAFreshRenderer(const Scene& s, const RenderRequest& request) {
+    gpu::GpuOptions options;
+    options.validation = true;
+    auto fresh = gpu::GpuRenderer::create(options);
+    EXPECT_TRUE(fresh.ok()) << fresh.error().message;
+    if (!fresh) return std::nullopt;
+    auto out = fresh.value()->render(s, request);
+    EXPECT_TRUE(out.ok()) << out.error().message;
+    EXPECT_TRUE(fresh.value()->validationMessages().empty());
+    if (!out) return std::nullopt;
+    return std::move(out.value());
+}
+
+// A box and exponential height fog over the ground, lit by the sun and a point light: the editor-like
+// scene of the tests on the renderer's state across calls (parked sizes, prepared pipelines).
+Scene boxHeightSunPointScene() {
+    Scene s = baseScene();
+    s.volumes = {box(), height(HeightProfile::Exponential)};
+    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
+    s.geometry = ground();
+    return s;
+}
+
 // The editor's pattern: a full-size frame at rest, smaller coarse frames while a volume is dragged,
 // then the full size again. The full-size resources are parked, not freed, while the coarse ones are
 // in use (gpu/renderer_state.h): coming back allocates nothing and renders exactly what a fresh
 // renderer renders (nothing stale from the parked set or from the coarse frames leaks into it).
 TEST_F(GpuTest, BackAtAParkedSizeAllocatesNothingAndRendersAsAFreshRenderer) {
-    Scene s = baseScene();
-    s.volumes = {box(), height(HeightProfile::Exponential)};
-    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
-    s.geometry = ground();
+    const Scene s = boxHeightSunPointScene();
     RenderRequest rest = smallRequest();
     rest.width = 96;
     rest.height = 54;
@@ -944,15 +967,10 @@ TEST_F(GpuTest, BackAtAParkedSizeAllocatesNothingAndRendersAsAFreshRenderer) {
     ASSERT_TRUE(back.ok()) << back.error().message;
     EXPECT_FALSE(back.value().allocated) << "the full-size set should have been parked";
 
-    gpu::GpuOptions options;
-    options.validation = true;
-    auto fresh = gpu::GpuRenderer::create(options);
-    ASSERT_TRUE(fresh.ok()) << fresh.error().message;
-    auto expected = fresh.value()->render(s, rest);
-    ASSERT_TRUE(expected.ok()) << expected.error().message;
-    ASSERT_EQ(back.value().image.pixels.size(), expected.value().image.pixels.size());
-    EXPECT_EQ(relativeMeanAbsError(back.value().image, expected.value().image), 0.0);
-    EXPECT_TRUE(fresh.value()->validationMessages().empty());
+    const std::optional<gpu::GpuRender> expected = renderByAFreshRenderer(s, rest);
+    ASSERT_TRUE(expected);
+    ASSERT_EQ(back.value().image.pixels.size(), expected->image.pixels.size());
+    EXPECT_EQ(relativeMeanAbsError(back.value().image, expected->image), 0.0);
 
     // A size larger than the parked one frees it; the previous full size is then allocated anew.
     RenderRequest larger = rest;
@@ -1000,10 +1018,7 @@ TEST_F(GpuTest, ARenderSaysWhetherItCompiledPipelines) {
 // nothing, nor does a second preparation, and the image is the one a renderer that did not prepare
 // renders.
 TEST_F(GpuTest, PreparedPipelinesLeaveTheRenderNothingToCompile) {
-    Scene s = baseScene();
-    s.volumes = {box(), height(HeightProfile::Exponential)};
-    s.lights = {sun(), pointLight({0.0f, 1.5f, 1.5f}, {1.0f, 1.0f, 1.0f})};
-    s.geometry = ground();
+    const Scene s = boxHeightSunPointScene();
     RenderRequest coarse = smallRequest();
     coarse.quality = Quality::Low;
     Result<bool> prepared = renderer->preparePipelines(s, coarse);
@@ -1022,15 +1037,10 @@ TEST_F(GpuTest, PreparedPipelinesLeaveTheRenderNothingToCompile) {
     ASSERT_TRUE(second.ok()) << second.error().message;
     EXPECT_FALSE(second.value().compiled);
 
-    gpu::GpuOptions options;
-    options.validation = true;
-    auto fresh = gpu::GpuRenderer::create(options);
-    ASSERT_TRUE(fresh.ok()) << fresh.error().message;
-    auto expected = fresh.value()->render(s, coarse);
-    ASSERT_TRUE(expected.ok()) << expected.error().message;
-    EXPECT_TRUE(expected.value().compiled);
-    EXPECT_EQ(relativeMeanAbsError(out.value().image, expected.value().image), 0.0);
-    EXPECT_TRUE(fresh.value()->validationMessages().empty());
+    const std::optional<gpu::GpuRender> expected = renderByAFreshRenderer(s, coarse);
+    ASSERT_TRUE(expected);
+    EXPECT_TRUE(expected->compiled);
+    EXPECT_EQ(relativeMeanAbsError(out.value().image, expected->image), 0.0);
 }
 
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {

@@ -96,6 +96,9 @@ struct Presenter::State {
     Result<void> createCommands();
     Result<void> initImGui();
     Result<void> warmUpscale();
+    // Ends `cmd`, submits it alone and waits for the queue (one-off work at start); what: what it does,
+    // for the error ("upload the UI font").
+    Result<void> submitOnce(const std::string& what);
     Result<void> ensureSourceDisplay(glm::ivec2 size);
     Result<void> ensureBuffer(gpu::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, gpu::Memory memory,
                               const char* name);
@@ -287,13 +290,18 @@ Result<void> Presenter::State::initImGui() {
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     BRUME_VK(vkBeginCommandBuffer(cmd, &begin), "record the font upload");
     ImGui_ImplVulkan_CreateFontsTexture(cmd);
-    BRUME_VK(vkEndCommandBuffer(cmd), "record the font upload");
+    BRUME_TRY(submitOnce("upload the UI font"));
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    return {};
+}
+
+Result<void> Presenter::State::submitOnce(const std::string& what) {
+    BRUME_VK(vkEndCommandBuffer(cmd), "record the commands to " + what);
     VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
-    BRUME_VK(vkQueueSubmit(device.queue(), 1, &submit, VK_NULL_HANDLE), "upload the UI font");
-    BRUME_VK(vkQueueWaitIdle(device.queue()), "upload the UI font");
-    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    BRUME_VK(vkQueueSubmit(device.queue(), 1, &submit, VK_NULL_HANDLE), what);
+    BRUME_VK(vkQueueWaitIdle(device.queue()), what);
     return {};
 }
 
@@ -419,13 +427,7 @@ Result<void> Presenter::State::warmUpscale() {
     blit.dstOffsets[1] = {static_cast<int32_t>(extent.width), static_cast<int32_t>(extent.height), 1};
     vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
                    VK_FILTER_LINEAR);
-    BRUME_VK(vkEndCommandBuffer(cmd), "record the upscale warm-up");
-    VkSubmitInfo submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    BRUME_VK(vkQueueSubmit(device.queue(), 1, &submit, VK_NULL_HANDLE), "run the upscale warm-up");
-    BRUME_VK(vkQueueWaitIdle(device.queue()), "run the upscale warm-up");
-    return {};
+    return submitOnce("run the upscale warm-up");
 }
 
 // Records: the renderer's output -> window pixels (display pass, or the background colour before
