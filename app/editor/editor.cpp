@@ -300,6 +300,7 @@ void Editor::rendererReplaced() {
     hasImage_ = false;
     last_.reset();
     accumulation_ = Accumulation();
+    prepared_ = CoarseKey{};  // the new renderer has made no pipeline yet
 }
 
 gpu::OutputImage Editor::viewportImage(const gpu::GpuRenderer& renderer) const {
