@@ -584,17 +584,14 @@ bool FramePasses::dispatches(const PassDecl& p) const {
            !(p.record == Record::ClearMedia && !voxelizeDispatches(variant, readBackVolumes));
 }
 
-const SpecKey* GpuRenderer::State::passKey(const PassDecl& p) const {
-    return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec;
-}
-
-void GpuRenderer::State::requestPipelines(const FramePasses& passes, PipelineBatch& batch) {
+void GpuRenderer::State::requestPipelines(const FramePasses& passes, const FrameKeys& frameKeys, PipelineBatch& batch) {
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
     for (const PassDecl& p : kPasses) {
         if (p.record == Record::Geometry && passes.records(p))
-            geometry.request(*device, layout, surfaceSpec, passes.variant.shapes, passes.spheres, batch);
+            geometry.request(*device, layout, frameKeys.surfaceSpec, passes.variant.shapes, passes.spheres, batch);
         else if (passes.dispatches(p))
-            pipelines.request(*device, layout, variantShaderName(p.shader, p.variant, passes.variant), passKey(p), batch);
+            pipelines.request(*device, layout, variantShaderName(p.shader, p.variant, passes.variant), frameKeys.of(p),
+                              batch);
     }
 }
 
@@ -643,7 +640,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
                              mesh.sphereVertices > 0};
     // The pipelines this frame lacks, made together before it records (pipeline.h PipelineBatch).
     PipelineBatch batch;
-    requestPipelines(passes, batch);
+    requestPipelines(passes, keys, batch);
     compiled = compiled || batch.size() > 0;
     BRUME_TRY(batch.run());
     for (const PassDecl& p : kPasses) {
@@ -666,7 +663,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
         ctx.poisonSource = poisonSource;
         if (passes.dispatches(p)) {
             Result<const ComputePass*> pipeline =
-                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), passKey(p));
+                pipelines.get(*device, layout, variantShaderName(p.shader, p.variant, variant), keys.of(p));
             if (!pipeline) return pipeline.error();
             ctx.pipeline = pipeline.value();
         }
@@ -683,7 +680,7 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
             case Record::ShadowCells: recordShadowCells(ctx); break;
             case Record::Composite: recordComposite(ctx); break;
             case Record::Geometry:
-                BRUME_TRY(geometry.usePipeline(*device, layout, surfaceSpec, variant.shapes, mesh.sphereVertices > 0));
+                BRUME_TRY(geometry.usePipeline(*device, layout, keys.surfaceSpec, variant.shapes, mesh.sphereVertices > 0));
                 geometry.record(ctx);
                 break;
             case Record::TemporalCopy: recordTemporal(ctx); break;

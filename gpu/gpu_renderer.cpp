@@ -379,7 +379,7 @@ struct FramePlan {
     LightClusters clusters;
     FroxelRegion media;  // the froxels that can hold media (core/media_region.h)
     LightReach lightReach;
-    SpecKey spec, froxelSpec, surfaceSpec;  // State's members of the same names
+    FrameKeys keys;
 };
 
 Result<FramePlan> planFrames(const Scene& scene, const RenderRequest& request, const Device& device, bool froxelRegions) {
@@ -412,9 +412,10 @@ Result<FramePlan> planFrames(const Scene& scene, const RenderRequest& request, c
     const FroxelRegion lightFroxels{p.media.lo, glm::min(p.media.lo + (extent + groupSize - 1) / groupSize * groupSize, p.dims)};
     p.lightReach = buildLightReach(cs, frame, p.clusters, request.lightCulling, /*surfaces=*/!p.mesh.vertices.empty(),
                                    &lightFroxels);
-    p.spec = sceneSpecKey(cs, frame, p.lightReach);
-    p.froxelSpec = culledSpecKey(p.spec, froxelVolumesInReach(cs, frame));
-    p.surfaceSpec = surfaceLightsSpecKey(culledSpecKey(p.spec, surfaceVolumesInReach(cs, frame)), cs, p.lightReach);
+    FrameKeys& k = p.keys;
+    k.spec = sceneSpecKey(cs, frame, p.lightReach);
+    k.froxelSpec = culledSpecKey(k.spec, froxelVolumesInReach(cs, frame));
+    k.surfaceSpec = surfaceLightsSpecKey(culledSpecKey(k.spec, surfaceVolumesInReach(cs, frame)), cs, p.lightReach);
     return p;
 }
 
@@ -426,16 +427,12 @@ Result<bool> GpuRenderer::preparePipelines(const Scene& scene, const RenderReque
     const FramePlan& plan = planned.value();
     Result<VariantKey> variant = variantOf(plan.cs);
     if (!variant) return variant.error();
-    // requestPipelines reads the keys from the state; each render sets them again before it records.
-    s_->spec = plan.spec;
-    s_->froxelSpec = plan.froxelSpec;
-    s_->surfaceSpec = plan.surfaceSpec;
     PipelineBatch batch;
     for (bool rest : {false, true}) {  // the temporal pass in motion or at rest: not known before the frame
         FramePasses passes{variant.value(), request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
                            plan.mesh.sphereVertices > 0};
         passes.variant.temporalRest = rest;
-        s_->requestPipelines(passes, batch);
+        s_->requestPipelines(passes, plan.keys, batch);
     }
     const bool missing = batch.size() > 0;
     BRUME_TRY(batch.run());
@@ -482,11 +479,9 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     r.mediaExtent = media.hi - media.lo;
     const LightReach& lightReach = plan.lightReach;
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
-    s_->spec = plan.spec;
-    r.mediaEmits = s_->spec[SpecId::SPEC_EMISSION] != 0;
+    s_->keys = plan.keys;
+    r.mediaEmits = s_->keys.spec[SpecId::SPEC_EMISSION] != 0;
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
-    s_->froxelSpec = plan.froxelSpec;
-    s_->surfaceSpec = plan.surfaceSpec;
     writeSurfaceLights(r[BufferId::surfaceLights].mapped, cs.lights, lightReach);
     std::memcpy(static_cast<int*>(r[BufferId::lightClusters].mapped) + clusters.records.size(), reach.data(),
                 reach.size() * sizeof(int));
@@ -533,7 +528,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
         // Temporal and integrate run over the media region and its neighbours; the history side written
         // now is cleared first if an older frame left values outside them (FrameResources).
         r.temporalRegion = temporalFroxelRegion(media, dims);
-        r.distantFog = s_->spec[SpecId::SPEC_DISTANT_FOG] != 0;
+        r.distantFog = s_->keys.spec[SpecId::SPEC_DISTANT_FOG] != 0;
         std::tie(r.compositeLo, r.compositeHi) = compositePixels(r.temporalRegion, size, frame.froxelDims.w, r.distantFog);
         r.froxelTile = frame.froxelDims.w;
         FroxelRegion& written = r.historyWritten[static_cast<size_t>(t.writeIndex)];
@@ -550,7 +545,7 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
                                      cs.lights.size() * sizeof(shd::LightData), reach, mesh.bytes(),
                                      ShadowMapsKey{sun.depth.data(), sun.depth.size(), s_->sunShadow.builds(),
                                                    local.depth.data(), local.depth.size(), s_->localShadows.builds()},
-                                     s_->surfaceSpec, s_->variant.shapes);
+                                     s_->keys.surfaceSpec, s_->variant.shapes);
         s_->reuseSurfaces = request.reuseSurfaces && frame.vdbShadowSamples <= 0 && s_->surfacesValid &&
                             !s_->surfaceInputs.empty() && surfaces == s_->surfaceInputs;
         s_->surfacesValid = false;  // until this frame has run

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <new>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -312,6 +313,8 @@ Result<void> PipelineBatch::run() {
             // An exception must not leave a helper thread (std::terminate): it becomes the job's error.
             try {
                 if (Result<void> r = jobs[i].create(); !r) failed[i] = r.error();
+            } catch (const std::bad_alloc&) {
+                failed[i] = Error{"A shader pipeline could not be created: the host is out of memory."};
             } catch (const std::exception& e) {
                 failed[i] = Error{std::string("A shader pipeline could not be created: ") + e.what() + "."};
             }

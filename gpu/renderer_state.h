@@ -30,6 +30,15 @@ struct FramePasses {
     bool dispatches(const PassDecl& p) const;  // recorded, and with a compute pipeline this frame
 };
 
+// A call's specialization constants (passes marked specialized), from the scene and the frame alone.
+struct FrameKeys {
+    SpecKey spec;         // the scene's
+    SpecKey froxelSpec;   // spec with the volumes out of the froxels' reach culled (PassDecl::culledVolumes)
+    SpecKey surfaceSpec;  // spec with the volumes out of the surfaces' reach culled (the geometry pass)
+    // The key a pass's pipeline is specialized with (null: none; PassDecl::specialized).
+    const SpecKey* of(const PassDecl& p) const { return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec; }
+};
+
 // Declaration order is destruction order reversed: the device outlives everything it owns.
 struct GpuRenderer::State {
     std::unique_ptr<Device> device;
@@ -40,9 +49,7 @@ struct GpuRenderer::State {
     GeometryPass geometry;
     PipelineCache pipelines;          // one per shader variant (frame_table.h variantShaderName)
     VariantKey variant;               // this frame's
-    SpecKey spec;                     // this scene's specialization constants (passes marked specialized)
-    SpecKey froxelSpec;               // spec with the volumes out of the froxels' reach culled (PassDecl::culledVolumes)
-    SpecKey surfaceSpec;              // spec with the volumes out of the surfaces' reach culled (the geometry pass)
+    FrameKeys keys;                   // this call's specialization keys
     shd::DebugViewParams debugParams{};  // this call's RenderRequest::debugView and debugSlice
     std::vector<shd::GlowParams> glow;   // the glow pass's dispatches, one per glowing light in view
     bool readBackImage = true;           // false: the output stays on the device (renderOnDevice)
@@ -89,10 +96,8 @@ struct GpuRenderer::State {
     Result<void> chooseVariant(const CompiledScene& cs);
     Result<void> prepare(glm::ivec2 size, glm::ivec3 dims, const CompiledScene& cs, size_t vertexBytes,
                          int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes, bool readBackVolumes);
-    // The key a pass's pipeline is specialized with (null: none; PassDecl::specialized).
-    const SpecKey* passKey(const PassDecl& p) const;
-    // Adds to `batch` the pipelines such a frame's passes use and the caches lack.
-    void requestPipelines(const FramePasses& passes, PipelineBatch& batch);
+    // Adds to `batch` the pipelines such a frame's passes use with these keys and the caches lack.
+    void requestPipelines(const FramePasses& passes, const FrameKeys& frameKeys, PipelineBatch& batch);
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage

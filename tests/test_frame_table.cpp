@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -348,4 +349,9 @@ TEST(PipelineBatch, AJobThatThrowsIsItsErrorAndTheOthersRun) {
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.error().message, "A shader pipeline could not be created: no memory left.");
     EXPECT_EQ(ran.load(), 3);
+    // std::bad_alloc's what() ("std::bad_alloc") is no sentence for a user.
+    batch.add([]() -> Result<void> { throw std::bad_alloc(); }, 1);
+    Result<void> oom = batch.run();
+    ASSERT_FALSE(oom.ok());
+    EXPECT_EQ(oom.error().message, "A shader pipeline could not be created: the host is out of memory.");
 }

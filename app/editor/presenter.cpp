@@ -375,6 +375,19 @@ Result<void> Presenter::waitForFrame() {
 
 namespace {
 
+// The coarse frame's image (srcSize, TRANSFER_SRC) scaled over the top-left dstSize of a window
+// image (TRANSFER_DST), linear: the Upscale path, and its warm-up at start (warmUpscale), which must
+// run the same kind of blit for lavapipe to compile the shader the path uses.
+void recordUpscale(VkCommandBuffer cmd, VkImage src, glm::ivec2 srcSize, VkImage dst, glm::ivec2 dstSize) {
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {srcSize.x, srcSize.y, 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {dstSize.x, dstSize.y, 1};
+    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                   VK_FILTER_LINEAR);
+}
+
 VkImageMemoryBarrier imageBarrier(VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src, VkAccessFlags dst) {
     VkImageMemoryBarrier b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
     b.oldLayout = from;
@@ -420,13 +433,7 @@ Result<void> Presenter::State::warmUpscale() {
                                                      VK_ACCESS_TRANSFER_READ_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1,
                          &toRead);
-    VkImageBlit blit{};  // as record's Upscale: the coarse image scaled up, linear
-    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {3, 3, 1};
-    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.dstOffsets[1] = {static_cast<int32_t>(extent.width), static_cast<int32_t>(extent.height), 1};
-    vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
-                   VK_FILTER_LINEAR);
+    recordUpscale(cmd, src, glm::ivec2(3), dst, glm::ivec2(extent.width, extent.height));
     return submitOnce("run the upscale warm-up");
 }
 
@@ -506,13 +513,7 @@ void Presenter::State::record(uint32_t index, const gpu::OutputImage& source, Pr
             gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
         }
-        VkImageBlit blit{};
-        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        blit.srcOffsets[1] = {source.size.x, source.size.y, 1};
-        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        blit.dstOffsets[1] = {view.x, view.y, 1};
-        vkCmdBlitImage(cmd, sourceDisplay.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image,
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+        recordUpscale(cmd, sourceDisplay.image.get(), source.size, image, view);
     } else {
         vkCmdCopyBufferToImage(cmd, windowPixels.buffer.get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     }
