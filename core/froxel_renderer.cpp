@@ -117,19 +117,20 @@ shd::Accumulated integratedAt(const FroxelVolumes& v, int x, int y, int s) {
     return a;
 }
 
+// Step 1 of the lookup rule: entry s blended between lookup k's four columns.
+shd::Accumulated integratedEntry(const FroxelVolumes& v, const shd::IntegratedLookup& k, int s) {
+    const shd::Accumulated row0 = shd::mixAccumulated(integratedAt(v, k.columns.x, k.columns.y, s),
+                                                      integratedAt(v, k.columns.z, k.columns.y, s), k.weights.x);
+    const shd::Accumulated row1 = shd::mixAccumulated(integratedAt(v, k.columns.x, k.columns.w, s),
+                                                      integratedAt(v, k.columns.z, k.columns.w, s), k.weights.x);
+    return shd::mixAccumulated(row0, row1, k.weights.y);
+}
+
 // The composite's lookup rule, in the order written beside shd::integratedLookup.
 shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float viewDepth) {
     const shd::IntegratedLookup k = shd::integratedLookup(pixel, viewDepth, v.frame);
-    shd::Accumulated byEntry[2];
-    for (int e = 0; e < 2; ++e) {
-        const int s = k.entries[e];
-        const shd::Accumulated row0 = shd::mixAccumulated(integratedAt(v, k.columns.x, k.columns.y, s),
-                                                          integratedAt(v, k.columns.z, k.columns.y, s), k.weights.x);
-        const shd::Accumulated row1 = shd::mixAccumulated(integratedAt(v, k.columns.x, k.columns.w, s),
-                                                          integratedAt(v, k.columns.z, k.columns.w, s), k.weights.x);
-        byEntry[e] = shd::mixAccumulated(row0, row1, k.weights.y);
-    }
-    const shd::Accumulated entries = shd::mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
+    const shd::Accumulated entries =
+        shd::mixAccumulated(integratedEntry(v, k, k.entries.x), integratedEntry(v, k, k.entries.y), k.weights.z);
     return shd::mixAccumulated(shd::emptyAccumulated(), entries, k.entryWeight);
 }
 
@@ -139,10 +140,19 @@ struct DistantTable {
     glm::ivec2 corners{0};
     int entries = 0;
     std::vector<shd::Accumulated> values;  // [(corner row * corners.x + column) * n + j - 1]
+    // Whether the GPU tabulates it (SPEC_DISTANT_FOG: some volume is height or depth fog), and so
+    // composites a sky pixel from the last entries (distant_table.h isSkyDepth).
+    bool gpuTabulates = false;
 
     shd::Accumulated at(int x, int y, int j) const {
         if (j <= 0) return shd::emptyAccumulated();
         return values[static_cast<size_t>((y * corners.x + x) * entries + j - 1)];
+    }
+    // Entry j at the 4 corners c (x0, y0, x1, y1) around a pixel, blended bilinearly (w).
+    shd::Accumulated entryAt(glm::ivec4 c, vec2 w, int j) const {
+        const shd::Accumulated row0 = shd::mixAccumulated(at(c.x, c.y, j), at(c.z, c.y, j), w.x);
+        const shd::Accumulated row1 = shd::mixAccumulated(at(c.x, c.w, j), at(c.z, c.w, j), w.x);
+        return shd::mixAccumulated(row0, row1, w.y);
     }
 };
 
@@ -151,6 +161,7 @@ DistantTable buildDistantTable(const CompiledScene& cs, const shd::FrameUniforms
     t.corners = shd::distantTableCorners(glm::ivec2(frame.counts));
     t.entries = shd::distantTableEntries(frame);
     if (t.entries == 0) return t;
+    for (const shd::VolumeData& volume : cs.volumes) t.gpuTabulates = t.gpuTabulates || shd::distantFogKind(volume.kind.x);
     const int n = t.entries;
     t.values.assign(static_cast<size_t>(t.corners.x * t.corners.y * n), shd::emptyAccumulated());
     parallelFor(t.corners.y, threads, [&](int y) {
@@ -169,19 +180,18 @@ DistantTable buildDistantTable(const CompiledScene& cs, const shd::FrameUniforms
     return t;
 }
 
+// A sky pixel's fog (composite_body.glsl skyFogAt): the integrated volume's last entry, then the table's.
+shd::Accumulated skyFogAt(const FroxelVolumes& v, const DistantTable& t, vec2 pixel) {
+    const shd::IntegratedLookup k = shd::integratedLookupAtLastEntry(pixel, v.frame);
+    const shd::DistantCorners c = shd::distantCornersAround(pixel);
+    return shd::composeAccumulated(integratedEntry(v, k, k.entries.y), t.entryAt(c.corners, c.weights, t.entries));
+}
+
 // The fog from the froxel far to viewDepth (> the froxel far) at a pixel, as composite.comp reads it.
 shd::Accumulated distantFogAt(const DistantTable& t, const shd::FrameUniforms& frame, vec2 pixel, float viewDepth) {
     const shd::DistantTableLookup k = shd::distantTableLookup(pixel, viewDepth, frame, t.entries);
-    shd::Accumulated byEntry[2];
-    for (int e = 0; e < 2; ++e) {
-        const int j = k.entry - 1 + e;
-        const shd::Accumulated row0 =
-            shd::mixAccumulated(t.at(k.corners.x, k.corners.y, j), t.at(k.corners.z, k.corners.y, j), k.weights.x);
-        const shd::Accumulated row1 =
-            shd::mixAccumulated(t.at(k.corners.x, k.corners.w, j), t.at(k.corners.z, k.corners.w, j), k.weights.x);
-        byEntry[e] = shd::mixAccumulated(row0, row1, k.weights.y);
-    }
-    return shd::distantTableBlend(byEntry[0], byEntry[1], k.blend);
+    return shd::distantTableBlend(t.entryAt(k.corners, k.weights, k.entry - 1), t.entryAt(k.corners, k.weights, k.entry),
+                                  k.blend);
 }
 
 // The per-pixel part of the point and spot lights' glow (shaders/shared/glow.h; GPU: glow.comp), added
@@ -230,9 +240,12 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
             viewDepth = hit.t / rayPerDepth;
         }
         shd::Accumulated fog = sampleIntegrated(v, pixel, viewDepth);
-        // Past the froxel range, height and depth fog continue in closed form (shaders/shared/distant.h).
+        // Past the froxel range, height and depth fog continue in closed form (shaders/shared/distant.h);
+        // a sky pixel the last entries alone (composite_body.glsl skyFogAt).
         const float froxelFar = v.frame.froxelRange.y;
-        if (viewDepth > froxelFar && distant.entries > 0) {
+        if (distant.gpuTabulates && shd::isSkyDepth(viewDepth, v.frame)) {
+            fog = skyFogAt(v, distant, pixel);
+        } else if (viewDepth > froxelFar && distant.entries > 0) {
             fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
         }
         img.at(x, y) = addLightGlow(shd::compositeFog(background, fog), cs, glowLights, v, pixel, dir, rayPerDepth,

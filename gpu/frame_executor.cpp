@@ -390,7 +390,7 @@ Result<void> GpuRenderer::State::prepare(glm::ivec2 size, glm::ivec3 dims, const
     const size_t tileList = sizeof(shd::ExactListHeader) + static_cast<size_t>(tiles.x * tiles.y) * sizeof(uint32_t);
     // The composites read a list's tiles through its r32i texel view, past the header's texels.
     static_assert(sizeof(shd::ExactListHeader) == shd::TILE_LIST_HEADER_TEXELS * sizeof(int32_t));
-    for (BufferId list : {BufferId::nearTiles, BufferId::farTiles, BufferId::allFarTiles})
+    for (BufferId list : {BufferId::nearTiles, BufferId::farTiles, BufferId::allFarTiles, BufferId::skyTiles})
         BRUME_TRY(ensureBuffer(list, tileList, dirty, "The composite's tile lists"));
     BRUME_TRY(ensureTexelViews(dirty));
     if (dirty) {
@@ -520,6 +520,7 @@ void dispatchPass(const PassContext& ctx) {
         }
         case Dispatch::FarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::farTiles].buffer.get(), 0); break;
         case Dispatch::AllFarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::allFarTiles].buffer.get(), 0); break;
+        case Dispatch::SkyTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::skyTiles].buffer.get(), 0); break;
         case Dispatch::Single:
             if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
             break;

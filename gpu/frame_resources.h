@@ -62,8 +62,9 @@ struct FrameResources {
     glm::ivec2 compositeHi{0};
     int froxelTile = 1;  // pixels per froxel column (FrameUniforms.froxelDims.w)
     // Height or depth fog past the froxel far this frame (SPEC_DISTANT_FOG): the composite dispatches
-    // over the nearTiles list (compositeLo, compositeHi then the whole screen), the composite far and
-    // all far over farTiles and allFarTiles (shaders/tile_lists.comp). Without it the depth tiles, distant fog and tile lists passes
+    // over the nearTiles list (compositeLo, compositeHi then the whole screen), the composite far, all
+    // far and sky over farTiles, allFarTiles and skyTiles (shaders/tile_lists.comp). Without it the
+    // depth tiles, distant fog and tile lists passes
     // dispatch nothing (their shaders would return at once).
     bool distantFog = false;
     // The froxels the voxelize and light passes dispatch over (core/media_region.h); the rest of

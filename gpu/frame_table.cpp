@@ -17,7 +17,7 @@ using T = TexelViewId;
 }  // namespace
 
 // clang-format off
-const std::array<PassDecl, 17> kPasses{{
+const std::array<PassDecl, 18> kPasses{{
     // Each shadowing light's fog transmittance on the reduced grid (shared/shadow_volume.h); the
     // light passes read it, and with vdb grids the geometry pass's surfaces its vdb layers: in scenes
     // with vdb grids it runs here, before them (the entry after the column ends is left out).
@@ -90,10 +90,10 @@ const std::array<PassDecl, 17> kPasses{{
     {"distant fog", "distant_fog", Variant::Shapes, Dispatch::TileCorners, When::SurfacesChanged, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::depthTileTexels, B::surfaceLights},
      {B::distantTable}, true},
-    // With distant fog, the tiles within the froxel far, those past it and the others, as three
-    // indirect dispatches (one invocation walks the depth tiles: tile_lists.comp).
+    // With distant fog, the tiles within the froxel far, those past it, those all sky and the others,
+    // as four indirect dispatches (one invocation walks the depth tiles: tile_lists.comp).
     {"tile lists", "tile_lists", Variant::None, Dispatch::Single, When::Always, Record::Dispatch,
-     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles, B::allFarTiles}, true},
+     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles, B::allFarTiles, B::skyTiles}, true},
     // Fog over the surfaces from the integrated volume: the region's pixels, or with distant fog the
     // near tiles (composite_body.glsl).
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,
@@ -108,6 +108,10 @@ const std::array<PassDecl, 17> kPasses{{
     {"composite all far", "composite_all_far", Variant::None, Dispatch::AllFarTiles, When::Always, Record::Dispatch,
      {B::frame, T::allFarTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
+     {I::outputImage}, true},
+    // The tiles whose pixels are all sky: the integrated volume's last entry and the table's, no depth.
+    {"composite sky", "composite_sky", Variant::None, Dispatch::SkyTiles, When::Always, Record::Dispatch,
+     {B::frame, T::skyTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor},
      {I::outputImage}, true},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
     // added to the output over each glowing light's screen rectangle only.
@@ -195,6 +199,7 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
     if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::AllFarTiles ||
+        p.dispatch == Dispatch::SkyTiles ||
         p.dispatch == Dispatch::CompositePixels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;

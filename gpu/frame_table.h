@@ -197,6 +197,7 @@ enum class Dispatch : uint8_t {
                       // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
     FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
     AllFarTiles,  // one workgroup per allFarTiles entry (indirect; shaders/tile_lists.comp)
+    SkyTiles,     // one workgroup per skyTiles entry (indirect; shaders/tile_lists.comp)
     Single,       // one invocation, with distant fog only (the tile lists)
     ShadowCells,  // one per shadow volume cell some reader needs, a dispatch per layer (FrameResources::shadowLayers)
     ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
@@ -283,7 +284,7 @@ struct PassDecl {
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.
-extern const std::array<PassDecl, 17> kPasses;
+extern const std::array<PassDecl, 18> kPasses;
 
 // Pipeline stages a pass runs in (barriers).
 VkPipelineStageFlags passStages(const PassDecl& p);

@@ -22,6 +22,7 @@
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
+#include "shaders/shared/distant_table.h"
 #include "shaders/shared/glow.h"
 #include "shaders/shared/local_shadow.h"
 #include "vk_check.h"
@@ -210,8 +211,9 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     for (const shd::LightData& l : cs.lights) localMaps = localMaps || shd::localShadowMapped(l, frame.localShadowTexels);
     k[SpecId::SPEC_LOCAL_SHADOW_MAPS] = localMaps ? 1 : 0;
     k[SpecId::SPEC_VDB_SHADOWS] = frame.vdbShadowSamples > 0 ? 1 : 0;
-    const int distantKinds = (1 << shd::VOLUME_HEIGHT_EXPONENTIAL) | (1 << shd::VOLUME_HEIGHT_LINEAR) | (1 << shd::VOLUME_DEPTH);
-    k[SpecId::SPEC_DISTANT_FOG] = (kinds & distantKinds) != 0 && frame.froxelRange.y < frame.projection.w ? 1 : 0;
+    bool distant = false;
+    for (const shd::VolumeData& v : cs.volumes) distant = distant || shd::distantFogKind(v.kind.x);
+    k[SpecId::SPEC_DISTANT_FOG] = distant && frame.froxelRange.y < frame.projection.w ? 1 : 0;
     k[SpecId::SPEC_INFLUENCERS] = cs.influence.header.count.x > 0 ? 1 : 0;
     k[SpecId::SPEC_SHADOW_REDUCTION] = frame.shadowReduction;
     bool emits = false;  // influencers scale emission, never create it (shared/influence.h)

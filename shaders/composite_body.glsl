@@ -3,14 +3,17 @@
 // continued to the surface with the distant fog table (shared/distant_table.h, distant_fog.comp).
 // The lights' glow is added after it by glow.comp, over the pixels near each glowing light only.
 //
-// Three builds of this body: composite.comp without the distant fog table's lookup, over the region's
+// Four builds of this body: composite.comp without the distant fog table's lookup, over the region's
 // pixels or (with distant fog) the tiles whose pixels all lie within the froxel far; composite_far.comp
 // (BRUME_COMPOSITE_FAR) with it, over the tiles that straddle the far; composite_all_far.comp (both
 // defines) with it and one entry of the integrated volume, over the tiles whose pixels all lie past
-// the far (tile_lists.comp). Lavapipe runs an untaken branch under a mask, so a single shader paid for
-// the 16 table reads on every pixel (docs/performance.md, "pixel"), and the far one for 8 integrated
-// loads that an all-far pixel reads twice ("allfar"); split by tile, each pixel computes exactly what
-// the single shader computed.
+// the far; composite_sky.comp (BRUME_COMPOSITE_SKY) with the two last entries alone, over the tiles
+// whose pixels are all sky (tile_lists.comp). Lavapipe runs an untaken branch under a mask, so a
+// single shader paid for the 16 table reads on every pixel (docs/performance.md, "pixel"), the far
+// one for 8 integrated loads that an all-far pixel reads twice ("allfar"), and the sky for its depth,
+// the depth mappings, the table's entry n - 1 and the step's blend ("sky"); split by tile, each pixel
+// computes what a single shader would: a sky pixel (distant_table.h isSkyDepth) the same in the far
+// builds as in the composite sky.
 
 layout(local_size_x = SCREEN_GROUP_X, local_size_y = SCREEN_GROUP_Y, local_size_z = 1) in;
 // The pixels composited, [lo.xy, hi.xy): those whose lookups can read a froxel column of the temporal
@@ -29,25 +32,22 @@ Accumulated integratedAt(int x, int y, int s) {
 
 #include "integrated_lookup.glsl"
 
-Accumulated sampleIntegrated(vec2 pixel, float viewDepth) {
+// The integrated volume's lookup at viewDepth; lastEntry: its entry k.entries.y blended, the last entry
+// for any depth past the froxel far (a sky pixel's, skyFogAt).
+Accumulated sampleIntegrated(vec2 pixel, float viewDepth, out Accumulated lastEntry) {
     IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
-    Accumulated byEntry[2];
+    Accumulated first = integratedEntry(k, k.entries.x);
 #ifdef BRUME_COMPOSITE_ALL_FAR
     // Every pixel of an all-far tile reads the last entry twice (tile_lists.comp): the same 8 loads and
-    // blends give byEntry[1] bit for bit.
-    const int entriesRead = 1;
+    // blends give the second bit for bit.
+    lastEntry = first;
 #else
-    const int entriesRead = 2;
+    lastEntry = integratedEntry(k, k.entries.y);
 #endif
-    for (int e = 0; e < entriesRead; ++e) byEntry[e] = integratedEntry(k, k.entries[e]);
-#ifdef BRUME_COMPOSITE_ALL_FAR
-    byEntry[1] = byEntry[0];
-#endif
-    Accumulated entries = mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
-    return mixAccumulated(emptyAccumulated(), entries, k.entryWeight);
+    return integratedResult(k, first, lastEntry);
 }
 
-#ifdef BRUME_COMPOSITE_FAR
+#if defined(BRUME_COMPOSITE_FAR) || defined(BRUME_COMPOSITE_SKY)
 // The distant fog table (shared/distant_table.h) at one corner and entry.
 Accumulated distantTableAt(ivec2 corners, int x, int y, int j) {
     Accumulated a;
@@ -58,21 +58,35 @@ Accumulated distantTableAt(ivec2 corners, int x, int y, int j) {
     return a;
 }
 
+// The table's entry j at the 4 corners c (x0, y0, x1, y1) around a pixel, blended bilinearly (w).
+Accumulated distantEntryAt(ivec2 corners, ivec4 c, vec2 w, int j) {
+    Accumulated row0 = mixAccumulated(distantTableAt(corners, c.x, c.y, j), distantTableAt(corners, c.z, c.y, j), w.x);
+    Accumulated row1 = mixAccumulated(distantTableAt(corners, c.x, c.w, j), distantTableAt(corners, c.z, c.w, j), w.x);
+    return mixAccumulated(row0, row1, w.y);
+}
+#endif
+
+#ifdef BRUME_COMPOSITE_FAR
 // Height and depth fog from the froxel far to viewDepth: the 4 corners around the pixel blended
-// bilinearly at entries j-1 and j, then between the two in ray distance.
-Accumulated distantFogAt(vec2 pixel, float viewDepth) {
+// bilinearly at entries j-1 and j, then between the two in ray distance. lastEntry: the blend at j,
+// the table's last entry at the camera far (a sky pixel's, skyFogAt).
+Accumulated distantFogAt(vec2 pixel, float viewDepth, out Accumulated lastEntry) {
     ivec2 corners = distantTableCorners(frame.counts.xy);
     DistantTableLookup k = distantTableLookup(pixel, viewDepth, frame, distantTableEntries(frame));
-    Accumulated byEntry[2];
-    for (int e = 0; e < 2; ++e) {
-        int j = k.entry - 1 + e;
-        Accumulated row0 = mixAccumulated(distantTableAt(corners, k.corners.x, k.corners.y, j),
-                                          distantTableAt(corners, k.corners.z, k.corners.y, j), k.weights.x);
-        Accumulated row1 = mixAccumulated(distantTableAt(corners, k.corners.x, k.corners.w, j),
-                                          distantTableAt(corners, k.corners.z, k.corners.w, j), k.weights.x);
-        byEntry[e] = mixAccumulated(row0, row1, k.weights.y);
-    }
-    return distantTableBlend(byEntry[0], byEntry[1], k.blend);
+    Accumulated first = distantEntryAt(corners, k.corners, k.weights, k.entry - 1);
+    lastEntry = distantEntryAt(corners, k.corners, k.weights, k.entry);
+    return distantTableBlend(first, lastEntry, k.blend);
+}
+#endif
+
+#ifdef BRUME_COMPOSITE_SKY
+// A sky pixel's fog (distant_table.h isSkyDepth): the integrated volume's last entry, then the table's.
+Accumulated skyFogAt(vec2 pixel) {
+    IntegratedLookup k = integratedLookupAtLastEntry(pixel, frame);
+    Accumulated froxels = integratedEntry(k, k.entries.y);
+    DistantCorners c = distantCornersAround(pixel);
+    Accumulated distant = distantEntryAt(distantTableCorners(frame.counts.xy), c.corners, c.weights, distantTableEntries(frame));
+    return composeAccumulated(froxels, distant);
 }
 #endif
 
@@ -81,7 +95,9 @@ Accumulated distantFogAt(vec2 pixel, float viewDepth) {
 ivec2 compositePixel() {
     // Through the list's texel view: lavapipe loads a storage buffer lane by lane (shared/frame_table.h).
     int listed = TILE_LIST_HEADER_TEXELS + int(gl_WorkGroupID.x);
-#if defined(BRUME_COMPOSITE_ALL_FAR)
+#if defined(BRUME_COMPOSITE_SKY)
+    uint tile = uint(texelFetch(skyTileTexels, listed).x);
+#elif defined(BRUME_COMPOSITE_ALL_FAR)
     uint tile = uint(texelFetch(allFarTileTexels, listed).x);
 #elif defined(BRUME_COMPOSITE_FAR)
     uint tile = uint(texelFetch(farTileTexels, listed).x);
@@ -97,14 +113,24 @@ void main() {
     ivec2 px = compositePixel();
     if (any(greaterThanEqual(px, region.hi.xy))) return;
     vec3 background = imageLoad(sceneColor, px).rgb;
-    float viewDepth = imageLoad(sceneDepth, px).r;
     vec2 pixel = vec2(px) + vec2(0.5f);
-    Accumulated fog = sampleIntegrated(pixel, viewDepth);
+#ifdef BRUME_COMPOSITE_SKY
+    // Every pixel of a sky tile is sky: no depth to read.
+    Accumulated fog = skyFogAt(pixel);
+#else
+    float viewDepth = imageLoad(sceneDepth, px).r;
+    Accumulated integratedLast;
+    Accumulated fog = sampleIntegrated(pixel, viewDepth, integratedLast);
 #ifdef BRUME_COMPOSITE_FAR
     float froxelFar = frame.froxelRange.y;
     // Only the tiles with a pixel past the froxel far are dispatched here; the others' pixels would not
     // take the branch (composite.comp compiles it out).
-    if (viewDepth > froxelFar) fog = composeAccumulated(fog, distantFogAt(pixel, viewDepth));
+    Accumulated distantLast;
+    Accumulated distant = distantFogAt(pixel, viewDepth, distantLast);
+    if (viewDepth > froxelFar) fog = composeAccumulated(fog, distant);
+    // A sky pixel of a tile that is not all sky: what the composite sky computes (skyFogAt).
+    if (isSkyDepth(viewDepth, frame)) fog = composeAccumulated(integratedLast, distantLast);
+#endif
 #endif
     vec3 color = compositeFog(background, fog);
     imageStore(outputImage, px, vec4(color, 1.0f));

@@ -33,8 +33,7 @@ vec3 integratedTransmittanceAt(vec2 pixel, float viewDepth) {
     IntegratedLookup k = integratedLookup(pixel, viewDepth, frame);
     Accumulated byEntry[2];
     for (int e = 0; e < 2; ++e) byEntry[e] = integratedEntry(k, k.entries[e]);
-    Accumulated entries = mixAccumulated(byEntry[0], byEntry[1], k.weights.z);
-    return mixAccumulated(emptyAccumulated(), entries, k.entryWeight).transmittance;
+    return integratedResult(k, byEntry[0], byEntry[1]).transmittance;
 }
 
 void main() {

@@ -8,3 +8,10 @@ Accumulated integratedEntry(IntegratedLookup k, int s) {
                                       k.weights.x);
     return mixAccumulated(row0, row1, k.weights.y);
 }
+
+// Lookup k's result from its two entries' blends (integratedEntry at k.entries.x and .y): between them
+// in depth, then against the empty result near the camera (shd::integratedLookup, steps 2 and 3).
+Accumulated integratedResult(IntegratedLookup k, Accumulated first, Accumulated second) {
+    Accumulated entries = mixAccumulated(first, second, k.weights.z);
+    return mixAccumulated(emptyAccumulated(), entries, k.entryWeight);
+}

@@ -48,6 +48,12 @@ BRUME_FUNC int depthTileIndex(ivec2 tiles, ivec2 t) { return t.y * tiles.x + t.x
 // the division were rounded a few ulps low, so each reads the integrated volume's last entry alone.
 BRUME_CONST float DISTANT_ALL_FAR_MARGIN = 1.0e-3f;
 
+// The volume kinds that go on past the froxel far (height and depth fog). The GPU tabulates the distant
+// fog (SPEC_DISTANT_FOG) where the scene has one and the froxels end before the camera far.
+BRUME_FUNC bool distantFogKind(int kind) {
+    return kind == VOLUME_HEIGHT_EXPONENTIAL || kind == VOLUME_HEIGHT_LINEAR || kind == VOLUME_DEPTH;
+}
+
 // Entries per corner this frame: 0 when the froxels reach the camera far (no distant fog).
 BRUME_FUNC int distantTableEntries(FrameUniforms f) {
     float froxelFar = f.froxelRange.y;
@@ -77,12 +83,26 @@ struct DistantTableLookup {
     float blend;    // position between them in ray distance, 0..1
 };
 
-BRUME_FUNC DistantTableLookup distantTableLookup(vec2 pixel, float viewDepth, FrameUniforms f, int n) {
-    DistantTableLookup k;
+// The 4 corners around pixel (centre) `pixel` and its bilinear weights toward x1, y1.
+struct DistantCorners {
+    ivec4 corners;  // x0, y0, x1, y1
+    vec2 weights;   // toward x1, y1
+};
+
+BRUME_FUNC DistantCorners distantCornersAround(vec2 pixel) {
+    DistantCorners k;
     vec2 t = pixel / float(DISTANT_TILE_PX);
     vec2 c0 = floor(t);
     k.corners = ivec4(int(c0.x), int(c0.y), int(c0.x) + 1, int(c0.y) + 1);
     k.weights = t - c0;
+    return k;
+}
+
+BRUME_FUNC DistantTableLookup distantTableLookup(vec2 pixel, float viewDepth, FrameUniforms f, int n) {
+    DistantTableLookup k;
+    DistantCorners around = distantCornersAround(pixel);
+    k.corners = around.corners;
+    k.weights = around.weights;
     float froxelFar = f.froxelRange.y;
     float u = float(n) * log(viewDepth / froxelFar) / log(f.projection.w / froxelFar);
     k.entry = int(clamp(ceil(u), 1.0f, float(n)));
@@ -112,6 +132,15 @@ BRUME_FUNC Accumulated distantTableBlend(Accumulated a0, Accumulated a1, float b
     a.transmittance = vec3(r.y, g.y, bl.y);
     return a;
 }
+
+// The sky: a pixel at the camera far (sceneDepth's clear value: no surface; the CPU's ray that meets
+// nothing). With distant fog its fog is the integrated volume's last entry (integratedLookup's
+// entries.y past the froxel far) followed by the table's last entry, both blended bilinearly: the
+// whole ray. Written out so, it needs neither its depth, nor the depth mappings (a pow, two logs), nor
+// the table's entry n - 1 and the step's blend, whose b is 1 at the camera far: the composite sky
+// reads 16 texels where a pixel past the far reads 24 (docs/performance.md, "sky"). The same values as
+// the lookups, up to the rounding of mix(empty, a, 1) and of distantTableBlend at b = 1 (a few ulps).
+BRUME_FUNC bool isSkyDepth(float viewDepth, FrameUniforms f) { return viewDepth >= f.projection.w; }
 
 // front, then back behind it.
 BRUME_FUNC Accumulated composeAccumulated(Accumulated front, Accumulated back) {

@@ -38,7 +38,8 @@
     X(farTiles, 33, STORAGE_INDIRECT, std430, buffer, FarTileBlock, ExactListHeader farTileList; uint farTileIndex[];) \
     X(allFarTiles, 35, STORAGE_INDIRECT, std430, buffer, AllFarTileBlock, ExactListHeader allFarTileList; uint allFarTileIndex[];) \
     X(columnEnds, 37, STORAGE_GPU, std430, buffer, ColumnEndBlock, ivec4 columnEnd[];) \
-    X(surfaceLights, 46, UNIFORM, std140, uniform, SurfaceLightBlock, SurfaceLights surfaceLights;)
+    X(surfaceLights, 46, UNIFORM, std140, uniform, SurfaceLightBlock, SurfaceLights surfaceLights;) \
+    X(skyTiles, 47, STORAGE_INDIRECT, std430, buffer, SkyTileBlock, ExactListHeader skyTileList; uint skyTileIndex[];)
 
 // What the buffers hold:
 //   frame               FrameUniforms of this frame (types.h)
@@ -76,6 +77,8 @@
 //                       and the others; written by the tile lists pass, dispatched over by the
 //                       composite (near: no distant fog code), the composite all far (one entry of the
 //                       integrated volume, its last) and the composite far (composite_body.glsl)
+//   skyTiles            the same for the tiles whose pixels are all sky (distant_table.h isSkyDepth):
+//                       the composite sky (the integrated volume's last entry and the table's, alone)
 
 // Uniform texel buffer views of the buffers above, X(id, binding, viewed buffer, texel format): GLSL
 // reads them with texelFetch (a samplerBuffer, an isamplerBuffer for the r32i and rgba32i formats:
@@ -105,7 +108,7 @@
 //                       (local_shadow.glsl) by the light passes and the surfaces
 //   influenceTexels     influence as rgba32f texels: the header's 3 (INFLUENCE_HEADER_TEXELS), then 2 per
 //                       InfluenceSample (influence.glsl): the inline media's and voxelize's reads
-//   nearTileTexels, farTileTexels, allFarTileTexels
+//   nearTileTexels, farTileTexels, allFarTileTexels, skyTileTexels
 //                       the tile lists as r32i texels: each composite invocation's read of its tile
 //                       (TILE_LIST_HEADER_TEXELS, then the tiles), the same for the workgroup's 64
 // Which passes read a buffer through its views is a define per shader (resources.glsl); a pass reads
@@ -124,7 +127,8 @@
     X(allFarTileTexels, 42, allFarTiles, r32i) \
     X(vdbGridTexels, 43, vdbGrids, r32i) \
     X(localShadowTexels, 44, localShadowMaps, r32f) \
-    X(influenceTexels, 45, influence, rgba32f)
+    X(influenceTexels, 45, influence, rgba32f) \
+    X(skyTileTexels, 48, skyTiles, r32i)
 
 // Storage images, compute stages only: X(id, binding, glsl format, glsl type, flags).
 //   image3D: one texel per froxel; image2D: one per pixel. Flags (C++ only):

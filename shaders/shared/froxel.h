@@ -122,20 +122,37 @@ struct IntegratedLookup {
     float entryWeight;  // weight of the interpolated entries against the empty result
 };
 
-BRUME_FUNC IntegratedLookup integratedLookup(vec2 pixel, float viewDepth, FrameUniforms f) {
+// Step 1's columns alone: for a lookup that knows its entry (integratedLookupAtLastEntry).
+BRUME_FUNC IntegratedLookup integratedColumnsLookup(vec2 pixel, FrameUniforms f) {
     IntegratedLookup r;
     vec2 maxColumn = vec2(float(f.froxelDims.x - 1), float(f.froxelDims.y - 1));
     vec2 c = clamp(pixel / float(f.froxelDims.w) - vec2(0.5f), vec2(0.0f), maxColumn);
     ivec2 lo = ivec2(floor(c));
     ivec2 hi = min(lo + ivec2(1), ivec2(maxColumn));
+    r.columns = ivec4(lo.x, lo.y, hi.x, hi.y);
+    r.entries = ivec2(0);
+    r.weights = vec3(c.x - floor(c.x), c.y - floor(c.y), 0.0f);
+    r.entryWeight = 1.0f;
+    return r;
+}
+
+BRUME_FUNC IntegratedLookup integratedLookup(vec2 pixel, float viewDepth, FrameUniforms f) {
+    IntegratedLookup r = integratedColumnsLookup(pixel, f);
     float lastEntry = float(f.froxelDims.z - 1);
     float w = min(integratedEntryFromViewDepth(viewDepth, f), lastEntry);
     float wc = max(w, 0.0f);
     int e0 = int(floor(wc));
-    r.columns = ivec4(lo.x, lo.y, hi.x, hi.y);
     r.entries = ivec2(e0, min(e0 + 1, f.froxelDims.z - 1));
-    r.weights = vec3(c.x - floor(c.x), c.y - floor(c.y), wc - floor(wc));
+    r.weights.z = wc - floor(wc);
     r.entryWeight = clamp(w + 1.0f, 0.0f, 1.0f);
+    return r;
+}
+
+// Step 1 at the last entry: a sky pixel's (distant_table.h isSkyDepth), without the depth mapping. The
+// last entry is integratedLookup's entries.y for any depth past the froxel far.
+BRUME_FUNC IntegratedLookup integratedLookupAtLastEntry(vec2 pixel, FrameUniforms f) {
+    IntegratedLookup r = integratedColumnsLookup(pixel, f);
+    r.entries = ivec2(f.froxelDims.z - 1);
     return r;
 }
 
