@@ -38,6 +38,12 @@ struct RenderRequest {
     // when everything those passes read equals what they read then, as at rest in the editor, which
     // sets it. Off by default, so that `brume bench` and `brume tradeoff` time whole frames.
     bool reuseSurfaces = false;
+    // GPU renderer, for frames in motion: where the geometry pass has no pipeline yet for this frame's
+    // surface lights (a light that enters or leaves the view's reach mid-drag) but has the one that
+    // reads them from the light reach list (SPEC_SURFACE_LIGHTS -1: the same image, somewhat slower),
+    // use that one instead of compiling (lavapipe: ~250 ms on that frame). The editor sets it and makes
+    // the fallback while the view rests (GpuRenderer::preparePipelines).
+    bool pipelineFallbacks = false;
     ProgressFn progress;   // optional
     // Reference renderer: once set, rows not yet started are skipped and the image is incomplete
     // (the caller, which set it, throws the image away). Lets the editor cancel a long reference.

@@ -418,6 +418,8 @@ Result<FramePlan> planFrames(const Scene& scene, const RenderRequest& request, c
     k.spec = sceneSpecKey(cs, frame, p.lightReach);
     k.froxelSpec = culledSpecKey(k.spec, froxelVolumesInReach(cs, frame));
     k.surfaceSpec = surfaceLightsSpecKey(culledSpecKey(k.spec, surfaceVolumesInReach(cs, frame)), cs, p.lightReach);
+    k.surfaceFallback = k.surfaceSpec;
+    k.surfaceFallback[SpecId::SPEC_SURFACE_LIGHTS] = -1;
     return p;
 }
 
@@ -436,6 +438,9 @@ Result<bool> GpuRenderer::preparePipelines(const Scene& scene, const RenderReque
         passes.variant.temporalRest = rest;
         s_->requestPipelines(passes, plan.keys, batch);
     }
+    if (request.pipelineFallbacks)
+        s_->geometry.request(*s_->device, s_->bindings.pipelineLayout.get(), plan.keys.surfaceFallback, variant.value().shapes,
+                             plan.mesh.sphereVertices > 0, batch);
     const bool missing = batch.size() > 0;
     BRUME_TRY(batch.run());
     return missing;
@@ -482,6 +487,12 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const LightReach& lightReach = plan.lightReach;
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->keys = plan.keys;
+    // In motion, the geometry pass's fallback where its own pipelines are missing and the fallback's are
+    // made (RenderRequest::pipelineFallbacks): no compile on this frame, the same image.
+    const bool spheres = mesh.sphereVertices > 0;
+    if (request.pipelineFallbacks && !s_->geometry.has(s_->keys.surfaceSpec, s_->variant.shapes, spheres) &&
+        s_->geometry.has(s_->keys.surfaceFallback, s_->variant.shapes, spheres))
+        s_->keys.surfaceSpec = s_->keys.surfaceFallback;
     r.mediaEmits = s_->keys.spec[SpecId::SPEC_EMISSION] != 0;
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
     writeSurfaceLights(r[BufferId::surfaceLights].mapped, cs.lights, lightReach);

@@ -189,6 +189,16 @@ void GeometryPass::request(const Device& device, VkPipelineLayout layout, const 
     }
 }
 
+bool GeometryPass::has(const SpecKey& sceneKey, bool shapes, bool spheres) const {
+    const SpecKey key = geometryKey(sceneKey, shapes);
+    for (bool sphere : {false, true}) {
+        if (sphere && !spheres) break;
+        const auto it = pipelines_.find(std::tuple{key, shapes, sphere});
+        if (it == pipelines_.end() || !it->second) return false;
+    }
+    return !spheres || sphereDepthPipeline_;
+}
+
 Result<void> GeometryPass::usePipeline(const Device& device, VkPipelineLayout layout, const SpecKey& sceneKey,
                                        bool shapes, bool spheres) {
     const SpecKey key = geometryKey(sceneKey, shapes);

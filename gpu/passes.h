@@ -69,6 +69,8 @@ public:
     // create (pipeline.h PipelineBatch); run it before the next usePipeline or request.
     void request(const Device& device, VkPipelineLayout layout, const SpecKey& key, bool shapes, bool spheres,
                  PipelineBatch& batch);
+    // Whether usePipeline with these arguments would create nothing (its pipelines are made).
+    bool has(const SpecKey& key, bool shapes, bool spheres) const;
     // Call whenever the screen images are recreated (also makes the pass's own depth buffer).
     Result<void> attach(const Device& device, const FrameResources& r);
     void record(const PassContext& ctx) const;

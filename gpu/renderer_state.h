@@ -35,6 +35,9 @@ struct FrameKeys {
     SpecKey spec;         // the scene's
     SpecKey froxelSpec;   // spec with the volumes out of the froxels' reach culled (PassDecl::culledVolumes)
     SpecKey surfaceSpec;  // spec with the volumes out of the surfaces' reach culled (the geometry pass)
+    // surfaceSpec reading its surface lights from the light reach list (SPEC_SURFACE_LIGHTS -1): the
+    // same image for any set of surface lights (RenderRequest::pipelineFallbacks)
+    SpecKey surfaceFallback;
     // The key a pass's pipeline is specialized with (null: none; PassDecl::specialized).
     const SpecKey* of(const PassDecl& p) const { return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec; }
 };

@@ -1043,6 +1043,42 @@ TEST_F(GpuTest, PreparedPipelinesLeaveTheRenderNothingToCompile) {
     EXPECT_EQ(relativeMeanAbsError(out.value().image, expected->image), 0.0);
 }
 
+// RenderRequest::pipelineFallbacks, the editor's light drag (bench/editor_light_drag.txt): a point light
+// dragged out of the view's reach changes the geometry pass's surface lights, whose pipelines a frame
+// in motion would compile (~250 ms). With the fallback made beforehand it takes that one instead,
+// compiles nothing, and renders what a fresh renderer renders; without the flag the frame compiles.
+TEST_F(GpuTest, AFrameInMotionTakesThePreparedFallbackInsteadOfCompiling) {
+    Scene s = boxHeightSunPointScene();
+    s.lights.push_back(pointLight({-1.0f, 0.7f, 1.0f}, {0.2f, 0.5f, 1.0f}));
+    RenderRequest coarse = smallRequest();
+    coarse.quality = Quality::Low;
+    coarse.pipelineFallbacks = true;
+    auto first = renderer->render(s, coarse);
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    Result<bool> prepared = renderer->preparePipelines(s, coarse);  // the fallback: the rest is made
+    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+    EXPECT_TRUE(prepared.value());
+    Result<bool> again = renderer->preparePipelines(s, coarse);
+    ASSERT_TRUE(again.ok()) << again.error().message;
+    EXPECT_FALSE(again.value());
+
+    Scene moved = s;
+    moved.lights[2].position = {-60.0f, 0.7f, 1.0f};  // 8 m of range, 60 m away: out of every reach
+    auto out = renderer->render(moved, coarse);
+    ASSERT_TRUE(out.ok()) << out.error().message;
+    EXPECT_FALSE(out.value().compiled);
+    const std::optional<gpu::GpuRender> expected = renderByAFreshRenderer(moved, coarse);
+    ASSERT_TRUE(expected);
+    EXPECT_EQ(relativeMeanAbsError(out.value().image, expected->image), 0.0);
+
+    RenderRequest exact = coarse;
+    exact.pipelineFallbacks = false;
+    auto compiled = renderer->render(moved, exact);
+    ASSERT_TRUE(compiled.ok()) << compiled.error().message;
+    EXPECT_TRUE(compiled.value().compiled);
+    EXPECT_EQ(relativeMeanAbsError(compiled.value().image, expected->image), 0.0);
+}
+
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {
     GpuOptions options;
     options.device = "no such gpu 1234";

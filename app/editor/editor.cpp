@@ -251,6 +251,11 @@ std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan) const {
     request.debugView = debug_.view;
     request.debugSlice = debug_.slice;
     request.reuseSurfaces = true;  // at rest the surfaces do not change from frame to frame
+    // Where the geometry pass's pipelines for this frame's surface lights are not made yet (a light
+    // crossing the view's reach mid-drag), its fallback: the same image, no compile on this frame. At
+    // rest too, so that the first full-preset frame after such a drag does not compile either: the
+    // next preparation (renderIfNeeded) makes the pipelines of the new set of lights.
+    request.pipelineFallbacks = true;
     Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
     if (plan.coarse) shown.froxels.tile_px = coarseTilePx(resolveFroxelSettings(shown, Quality::Low).tile_px, plan.scale);
@@ -262,7 +267,8 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     const ViewPlan plan = interaction_.plan(doc_.revision(), doc_.grouping(), quality_, width, height);
     if (std::exchange(prepareCoarse_, false) && !plan.coarse && interaction_.maxScale() < 1.0) {
         // The frame after one at rest: the pipelines of the next drag's coarse frame are made now, while
-        // the view rests, not on that frame (a new set of lights or volumes, or the session's first).
+        // the view rests, not on that frame (a new set of lights or volumes, or the session's first),
+        // with the fallback it takes where a light crosses the view's reach mid-drag.
         const ViewPlan next = interaction_.coarsePlan(width, height);
         const CoarseKey k{doc_.revision(), next.width, next.height, debug_.view};
         if (!(k == prepared_)) {
