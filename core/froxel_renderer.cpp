@@ -138,11 +138,8 @@ shd::Accumulated sampleIntegrated(const FroxelVolumes& v, vec2 pixel, float view
 // entries 1..n, each the fog accumulated from the froxel far to that entry's view depth.
 struct DistantTable {
     glm::ivec2 corners{0};
-    int entries = 0;
+    int entries = 0;  // 0: no distant fog (no height or depth fog, or the froxels reach the camera far)
     std::vector<shd::Accumulated> values;  // [(corner row * corners.x + column) * n + j - 1]
-    // Whether the GPU tabulates it (SPEC_DISTANT_FOG: some volume is height or depth fog), and so
-    // composites a sky pixel from the last entries (distant_table.h isSkyDepth).
-    bool gpuTabulates = false;
 
     shd::Accumulated at(int x, int y, int j) const {
         if (j <= 0) return shd::emptyAccumulated();
@@ -159,9 +156,12 @@ struct DistantTable {
 DistantTable buildDistantTable(const CompiledScene& cs, const shd::FrameUniforms& frame, int threads) {
     DistantTable t;
     t.corners = shd::distantTableCorners(glm::ivec2(frame.counts));
-    t.entries = shd::distantTableEntries(frame);
+    // As the GPU's SPEC_DISTANT_FOG: a table only where height or depth fog goes on past the froxel far
+    // (without, every entry would be the empty fog, and a sky pixel is looked up like the others).
+    bool distant = false;
+    for (const shd::VolumeData& volume : cs.volumes) distant = distant || shd::distantFogKind(volume.kind.x);
+    t.entries = distant ? shd::distantTableEntries(frame) : 0;
     if (t.entries == 0) return t;
-    for (const shd::VolumeData& volume : cs.volumes) t.gpuTabulates = t.gpuTabulates || shd::distantFogKind(volume.kind.x);
     const int n = t.entries;
     t.values.assign(static_cast<size_t>(t.corners.x * t.corners.y * n), shd::emptyAccumulated());
     parallelFor(t.corners.y, threads, [&](int y) {
@@ -239,14 +239,15 @@ void compositeRow(const CompiledScene& cs, const GeometrySet& geometry, const Sh
             background = shadeSurface(cs, geometry, hit, &fogShadow, /*geometryShadows=*/false);
             viewDepth = hit.t / rayPerDepth;
         }
-        shd::Accumulated fog = sampleIntegrated(v, pixel, viewDepth);
         // Past the froxel range, height and depth fog continue in closed form (shaders/shared/distant.h);
-        // a sky pixel the last entries alone (composite_body.glsl skyFogAt).
-        const float froxelFar = v.frame.froxelRange.y;
-        if (distant.gpuTabulates && shd::isSkyDepth(viewDepth, v.frame)) {
+        // a sky pixel takes the last entries alone (composite_body.glsl skyFogAt).
+        const bool distantFog = distant.entries > 0 && viewDepth > v.frame.froxelRange.y;
+        shd::Accumulated fog;
+        if (distantFog && shd::isSkyDepth(viewDepth, v.frame)) {
             fog = skyFogAt(v, distant, pixel);
-        } else if (viewDepth > froxelFar && distant.entries > 0) {
-            fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
+        } else {
+            fog = sampleIntegrated(v, pixel, viewDepth);
+            if (distantFog) fog = shd::composeAccumulated(fog, distantFogAt(distant, v.frame, pixel, viewDepth));
         }
         img.at(x, y) = addLightGlow(shd::compositeFog(background, fog), cs, glowLights, v, pixel, dir, rayPerDepth,
                                     viewDepth);

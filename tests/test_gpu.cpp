@@ -880,10 +880,11 @@ TEST_F(GpuTest, PassTimingsAreConsistentWithTheWallClock) {
     auto gpu = renderer->render(s, smallRequest());
     ASSERT_TRUE(gpu.ok()) << gpu.error().message;
     // Without vdb grids the shadow volume runs after the column ends (frame_table.cpp).
-    const std::vector<std::string> expected{
-        "geometry",  "depth tiles", "column ends",   "shadow volume",     "voxelize",      "light", "light exact",
-        "temporal",  "integrate",   "distant fog",   "tile lists",    "composite",
-        "composite far", "composite all far", "composite sky", "glow",    "readback"};
+    const std::vector<std::string> expected{"geometry",      "depth tiles",       "column ends",   "shadow volume",
+                                            "voxelize",      "light",             "light exact",   "temporal",
+                                            "integrate",     "distant fog",       "tile lists",    "composite",
+                                            "composite far", "composite all far", "composite sky", "glow",
+                                            "readback"};
     ASSERT_EQ(gpu.value().passes.size(), expected.size());
     double sum = 0.0;
     for (size_t i = 0; i < expected.size(); ++i) {
