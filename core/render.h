@@ -38,11 +38,12 @@ struct RenderRequest {
     // when everything those passes read equals what they read then, as at rest in the editor, which
     // sets it. Off by default, so that `brume bench` and `brume tradeoff` time whole frames.
     bool reuseSurfaces = false;
-    // GPU renderer, for frames in motion: where the geometry pass has no pipeline yet for this frame's
-    // surface lights (a light that enters or leaves the view's reach mid-drag) but has the one that
-    // reads them from the light reach list (SPEC_SURFACE_LIGHTS -1: the same image, somewhat slower),
-    // use that one instead of compiling (lavapipe: ~250 ms on that frame). The editor sets it and makes
-    // the fallback while the view rests (GpuRenderer::preparePipelines).
+    // GPU renderer: where a pass has no pipeline yet for this frame's keys but has its fallback's, use
+    // that one instead of compiling (lavapipe: ~250 ms to over 1 s on that frame). The fallbacks give
+    // the same image, somewhat slower: no volume culled (a volume that enters or leaves the view's reach
+    // mid-drag; a culled volume's terms are exactly 0), and the geometry pass's surface lights read from
+    // the light reach list (a light that does; SPEC_SURFACE_LIGHTS -1). The editor sets it and makes
+    // the fallbacks while the view rests (GpuRenderer::preparePipelines).
     bool pipelineFallbacks = false;
     ProgressFn progress;   // optional
     // Reference renderer: once set, rows not yet started are skipped and the image is incomplete

@@ -596,6 +596,14 @@ void GpuRenderer::State::requestPipelines(const FramePasses& passes, const Frame
     }
 }
 
+bool GpuRenderer::State::hasCulledPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const {
+    for (const PassDecl& p : kPasses)
+        if (p.culledVolumes && passes.dispatches(p) &&
+            !pipelines.has(variantShaderName(p.shader, p.variant, passes.variant), frameKeys.of(p)))
+            return false;
+    return true;
+}
+
 Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar,
                                              bool readBackVolumes, int historyWriteIndex) {
     timer.reset(cmd);
@@ -639,6 +647,12 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
     const FramePasses passes{variant, debugParams.view.x != shd::DEBUG_VIEW_FINAL, reuseSurfaces, readBackVolumes,
                              mesh.sphereVertices > 0};
+    // Where the froxel passes' pipelines for this frame's volumes in reach are not made but those with no
+    // volume culled are (RenderRequest::pipelineFallbacks; a volume crossing the view's reach mid-drag):
+    // those, no compile on this frame, the same image.
+    keys.froxelFallback = false;
+    if (pipelineFallbacks && !hasCulledPipelines(passes, keys))
+        keys.froxelFallback = hasCulledPipelines(passes, keys.fallbacks());
     // The pipelines this frame lacks, made together before it records (pipeline.h PipelineBatch).
     PipelineBatch batch;
     requestPipelines(passes, keys, batch);

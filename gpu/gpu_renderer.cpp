@@ -418,7 +418,7 @@ Result<FramePlan> planFrames(const Scene& scene, const RenderRequest& request, c
     k.spec = sceneSpecKey(cs, frame, p.lightReach);
     k.froxelSpec = culledSpecKey(k.spec, froxelVolumesInReach(cs, frame));
     k.surfaceSpec = surfaceLightsSpecKey(culledSpecKey(k.spec, surfaceVolumesInReach(cs, frame)), cs, p.lightReach);
-    k.surfaceFallback = k.surfaceSpec;
+    k.surfaceFallback = k.spec;
     k.surfaceFallback[SpecId::SPEC_SURFACE_LIGHTS] = -1;
     return p;
 }
@@ -437,10 +437,8 @@ Result<bool> GpuRenderer::preparePipelines(const Scene& scene, const RenderReque
                            plan.mesh.sphereVertices > 0};
         passes.variant.temporalRest = rest;
         s_->requestPipelines(passes, plan.keys, batch);
+        if (request.pipelineFallbacks) s_->requestPipelines(passes, plan.keys.fallbacks(), batch);
     }
-    if (request.pipelineFallbacks)
-        s_->geometry.request(*s_->device, s_->bindings.pipelineLayout.get(), plan.keys.surfaceFallback, variant.value().shapes,
-                             plan.mesh.sphereVertices > 0, batch);
     const bool missing = batch.size() > 0;
     BRUME_TRY(batch.run());
     return missing;
@@ -453,6 +451,7 @@ Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRe
 Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequest& request, bool readBackVolumes,
                                             bool readBackImage) {
     s_->compiled = false;
+    s_->pipelineFallbacks = request.pipelineFallbacks;
     Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
     if (!planned) return planned.error();
     FramePlan& plan = planned.value();
@@ -487,8 +486,9 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const LightReach& lightReach = plan.lightReach;
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->keys = plan.keys;
-    // In motion, the geometry pass's fallback where its own pipelines are missing and the fallback's are
-    // made (RenderRequest::pipelineFallbacks): no compile on this frame, the same image.
+    // The geometry pass's fallback where its own pipelines are missing and the fallback's are made
+    // (RenderRequest::pipelineFallbacks): no compile on this frame, the same image. The froxel passes
+    // choose theirs as each frame records (State::recordFrame).
     const bool spheres = mesh.sphereVertices > 0;
     if (request.pipelineFallbacks && !s_->geometry.has(s_->keys.surfaceSpec, s_->variant.shapes, spheres) &&
         s_->geometry.has(s_->keys.surfaceFallback, s_->variant.shapes, spheres))

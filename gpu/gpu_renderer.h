@@ -58,7 +58,7 @@ public:
     // window, which draws outputImage() on device() (gpu/display_pass.h).
     Result<GpuRender> renderOnDevice(const Scene& scene, const RenderRequest& request);
     // Creates now the pipelines a render of (scene, request) would create (for its temporal pass in
-    // motion and at rest), and with RenderRequest::pipelineFallbacks the fallback it may take where a
+    // motion and at rest), and with RenderRequest::pipelineFallbacks the fallbacks it may take where a
     // later frame's are missing, without rendering: the editor calls it for its next coarse frame while
     // the view rests, so that the frames of a drag do not compile (lavapipe: 10-250 ms a pipeline).
     // Whether any was missing.

@@ -348,6 +348,11 @@ Result<const ComputePass*> PipelineCache::get(const Device& device, VkPipelineLa
     return &it->second;
 }
 
+bool PipelineCache::has(const std::string& shader, const SpecKey* spec) const {
+    const auto it = passes_.find(cacheKey(shader, spec).first);
+    return it != passes_.end() && it->second.pipeline;
+}
+
 void PipelineCache::request(const Device& device, VkPipelineLayout layout, const std::string& shader,
                             const SpecKey* spec, PipelineBatch& batch) {
     auto [key, read] = cacheKey(shader, spec);

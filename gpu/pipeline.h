@@ -126,6 +126,8 @@ public:
     // exists or is already in a batch. Run the batch before the next get() or request().
     void request(const Device& device, VkPipelineLayout layout, const std::string& shader, const SpecKey* spec,
                  PipelineBatch& batch);
+    // Whether get() with these arguments would return a pipeline made earlier, without compiling.
+    bool has(const std::string& shader, const SpecKey* spec) const;
     size_t size() const { return passes_.size(); }
 
 private:

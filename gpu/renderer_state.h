@@ -35,11 +35,22 @@ struct FrameKeys {
     SpecKey spec;         // the scene's
     SpecKey froxelSpec;   // spec with the volumes out of the froxels' reach culled (PassDecl::culledVolumes)
     SpecKey surfaceSpec;  // spec with the volumes out of the surfaces' reach culled (the geometry pass)
-    // surfaceSpec reading its surface lights from the light reach list (SPEC_SURFACE_LIGHTS -1): the
-    // same image for any set of surface lights (RenderRequest::pipelineFallbacks)
+    // The fallbacks (RenderRequest::pipelineFallbacks): the same image for any volumes in reach and any
+    // set of surface lights. The froxel passes take spec (froxelFallback), the geometry pass
+    // surfaceFallback: spec reading its surface lights from the light reach list (SPEC_SURFACE_LIGHTS -1).
     SpecKey surfaceFallback;
+    bool froxelFallback = false;  // this frame's culled passes take spec
     // The key a pass's pipeline is specialized with (null: none; PassDecl::specialized).
-    const SpecKey* of(const PassDecl& p) const { return !p.specialized ? nullptr : p.culledVolumes ? &froxelSpec : &spec; }
+    const SpecKey* of(const PassDecl& p) const {
+        return !p.specialized ? nullptr : p.culledVolumes && !froxelFallback ? &froxelSpec : &spec;
+    }
+    // These keys with both fallbacks taken.
+    FrameKeys fallbacks() const {
+        FrameKeys k = *this;
+        k.froxelFallback = true;
+        k.surfaceSpec = surfaceFallback;
+        return k;
+    }
 };
 
 // Declaration order is destruction order reversed: the device outlives everything it owns.
@@ -82,6 +93,7 @@ struct GpuRenderer::State {
     FrameResources parked;
     bool allocated = false;  // this render's prepare allocated sized resources (GpuRender::allocated)
     bool compiled = false;   // this render created pipelines (GpuRender::compiled)
+    bool pipelineFallbacks = false;  // this render's RenderRequest::pipelineFallbacks
 
     Result<void> createCommands();
     Result<void> createPasses();
@@ -101,6 +113,8 @@ struct GpuRenderer::State {
                          int shadowReduction, size_t sunShadowBytes, size_t localShadowBytes, bool readBackVolumes);
     // Adds to `batch` the pipelines such a frame's passes use with these keys and the caches lack.
     void requestPipelines(const FramePasses& passes, const FrameKeys& frameKeys, PipelineBatch& batch);
+    // Whether the pipelines such a frame's culled passes (PassDecl::culledVolumes) use with these keys are made.
+    bool hasCulledPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const;
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage

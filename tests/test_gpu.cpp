@@ -1080,6 +1080,54 @@ TEST_F(GpuTest, AFrameInMotionTakesThePreparedFallbackInsteadOfCompiling) {
     EXPECT_EQ(relativeMeanAbsError(compiled.value().image, expected->image), 0.0);
 }
 
+// A volume dragged out of every reach (froxels and surfaces) and one dragged into it: with the
+// fallbacks prepared (no volume culled), neither frame compiles, and each image equals a fresh
+// renderer's up to rounding. Without the fallbacks the first compiles its culled key. Not byte for
+// byte: the culled volume's terms are exactly 0, but the pipelines that still evaluate them round the
+// other terms differently here (3e-8 relative, from the shadow volume and light passes).
+constexpr double kFallbackRounding = 1e-6;
+TEST_F(GpuTest, AVolumeCrossingTheReachTakesThePreparedFallbackInsteadOfCompiling) {
+    const Scene s = boxHeightSunPointScene();
+    Scene away = s;
+    away.volumes[0].transform.translation = {0.0f, -30.0f, 60.0f};  // behind the camera, under the ground
+    RenderRequest coarse = smallRequest();
+    coarse.quality = Quality::Low;
+    coarse.pipelineFallbacks = true;
+
+    auto first = renderer->render(s, coarse);
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    Result<bool> prepared = renderer->preparePipelines(s, coarse);
+    ASSERT_TRUE(prepared.ok()) << prepared.error().message;
+    auto out = renderer->render(away, coarse);
+    ASSERT_TRUE(out.ok()) << out.error().message;
+    EXPECT_FALSE(out.value().compiled);
+    const std::optional<gpu::GpuRender> expectedAway = renderByAFreshRenderer(away, coarse);
+    ASSERT_TRUE(expectedAway);
+    EXPECT_LT(relativeMeanAbsError(out.value().image, expectedAway->image), kFallbackRounding);
+
+    RenderRequest exact = coarse;
+    exact.pipelineFallbacks = false;
+    auto compiled = renderer->render(away, exact);
+    ASSERT_TRUE(compiled.ok()) << compiled.error().message;
+    EXPECT_TRUE(compiled.value().compiled);  // the box is culled: a key of its own
+    EXPECT_EQ(relativeMeanAbsError(compiled.value().image, expectedAway->image), 0.0);
+
+    // Into the reach: a renderer that has seen the box only out of it.
+    gpu::GpuOptions options;
+    options.validation = true;
+    auto other = gpu::GpuRenderer::create(options);
+    ASSERT_TRUE(other.ok()) << other.error().message;
+    ASSERT_TRUE(other.value()->render(away, coarse).ok());
+    ASSERT_TRUE(other.value()->preparePipelines(away, coarse).ok());
+    auto in = other.value()->render(s, coarse);
+    ASSERT_TRUE(in.ok()) << in.error().message;
+    EXPECT_FALSE(in.value().compiled);
+    const std::optional<gpu::GpuRender> expectedIn = renderByAFreshRenderer(s, coarse);
+    ASSERT_TRUE(expectedIn);
+    EXPECT_LT(relativeMeanAbsError(in.value().image, expectedIn->image), kFallbackRounding);
+    EXPECT_TRUE(other.value()->validationMessages().empty());
+}
+
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {
     GpuOptions options;
     options.device = "no such gpu 1234";

@@ -251,10 +251,10 @@ std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan) const {
     request.debugView = debug_.view;
     request.debugSlice = debug_.slice;
     request.reuseSurfaces = true;  // at rest the surfaces do not change from frame to frame
-    // Where the geometry pass's pipelines for this frame's surface lights are not made yet (a light
-    // crossing the view's reach mid-drag), its fallback: the same image, no compile on this frame. At
-    // rest too, so that the first full-preset frame after such a drag does not compile either: the
-    // next preparation (renderIfNeeded) makes the pipelines of the new set of lights.
+    // Where the pipelines for this frame's surface lights or volumes in reach are not made yet (a light
+    // or a volume crossing the view's reach mid-drag), their fallbacks: the same image, no compile on
+    // this frame. At rest too, so that the first full-preset frame after such a drag does not compile
+    // either: the next preparation (renderIfNeeded) makes the pipelines of the new reach.
     request.pipelineFallbacks = true;
     Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
@@ -268,13 +268,17 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     if (std::exchange(prepareCoarse_, false) && !plan.coarse && interaction_.maxScale() < 1.0) {
         // The frame after one at rest: the pipelines of the next drag's coarse frame are made now, while
         // the view rests, not on that frame (a new set of lights or volumes, or the session's first),
-        // with the fallback it takes where a light crosses the view's reach mid-drag.
+        // with the fallbacks it takes where a light or a volume crosses the view's reach mid-drag.
         const ViewPlan next = interaction_.coarsePlan(width, height);
         const CoarseKey k{doc_.revision(), next.width, next.height, debug_.view};
         if (!(k == prepared_)) {
             prepared_ = k;
             const auto [scene, request] = frameFor(next);
             (void)renderer.preparePipelines(scene, request);  // a failure is the coarse frame's to report
+            // And those of this view's frames at rest: after a drag that took a volume or a light across
+            // the view's reach, the frames at rest took the fallbacks (the same image, slower) until now.
+            const auto [restScene, restRequest] = frameFor(plan);
+            (void)renderer.preparePipelines(restScene, restRequest);
         }
     }
     const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
