@@ -518,9 +518,7 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(e.x, shd::SCREEN_GROUP_X), groups(e.y, shd::SCREEN_GROUP_Y), 1);
             break;
         }
-        case Dispatch::FarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::farTiles].buffer.get(), 0); break;
-        case Dispatch::AllFarTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::allFarTiles].buffer.get(), 0); break;
-        case Dispatch::SkyTiles: vkCmdDispatchIndirect(ctx.cmd, r[BufferId::skyTiles].buffer.get(), 0); break;
+        case Dispatch::Indirect: vkCmdDispatchIndirect(ctx.cmd, r[*ctx.pass->indirect].buffer.get(), 0); break;
         case Dispatch::Single:
             if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
             break;
@@ -553,9 +551,6 @@ void dispatchPass(const PassContext& ctx) {
             vkCmdDispatch(ctx.cmd, groups(c.z - c.x, shd::INTEGRATE_GROUP_X), groups(c.w - c.y, shd::INTEGRATE_GROUP_Y), 1);
             break;
         }
-        case Dispatch::ExactFroxels:
-            vkCmdDispatchIndirect(ctx.cmd, r[BufferId::exactList].buffer.get(), 0);
-            break;
         case Dispatch::TileCorners: {
             if (!r.distantFog) break;  // no table to fill
             const glm::ivec2 corners = shd::distantTableCorners(r.size);

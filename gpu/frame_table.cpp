@@ -64,11 +64,11 @@ const std::array<PassDecl, 18> kPasses{{
       T::columnEndTexels},
      {I::sourceImage, I::sourceExtinction, B::counters, B::exactList}, true, true},
     // S again at the listed froxels only, with the exact closed-form transmittance where needed.
-    {"light exact", "light_exact", Variant::LightMedia, Dispatch::ExactFroxels, When::Always, Record::Dispatch,
+    {"light exact", "light_exact", Variant::LightMedia, Dispatch::Indirect, When::Always, Record::Dispatch,
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::shadowTexels, T::sunShadowTexels,
       T::localShadowTexels, T::vdbGridTexels, T::influenceTexels, I::mediaScatteringG, I::mediaExtinction, I::mediaEmission,
       B::exactList},
-     {I::sourceImage}, true, true},
+     {I::sourceImage}, true, true, B::exactList},
     // S and sigma_t blended with the reprojected history (shared/temporal.h) over the temporal region
     // (core/media_region.h) into the history's output, which the later passes read. At rest it only
     // clears stale history: integrate_rest resolves each froxel itself.
@@ -100,19 +100,19 @@ const std::array<PassDecl, 18> kPasses{{
      {B::frame, T::nearTileTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor, I::sceneDepth},
      {I::outputImage}, true},
     // The far tiles: fog continued past the froxel far from the distant fog table.
-    {"composite far", "composite_far", Variant::None, Dispatch::FarTiles, When::Always, Record::Dispatch,
+    {"composite far", "composite_far", Variant::None, Dispatch::Indirect, When::Always, Record::Dispatch,
      {B::frame, T::farTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
-     {I::outputImage}, true},
+     {I::outputImage}, true, false, B::farTiles},
     // The tiles wholly past the froxel far: as the far tiles, the integrated volume's last entry read once.
-    {"composite all far", "composite_all_far", Variant::None, Dispatch::AllFarTiles, When::Always, Record::Dispatch,
+    {"composite all far", "composite_all_far", Variant::None, Dispatch::Indirect, When::Always, Record::Dispatch,
      {B::frame, T::allFarTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor,
       I::sceneDepth},
-     {I::outputImage}, true},
+     {I::outputImage}, true, false, B::allFarTiles},
     // The tiles whose pixels are all sky: the integrated volume's last entry and the table's, no depth.
-    {"composite sky", "composite_sky", Variant::None, Dispatch::SkyTiles, When::Always, Record::Dispatch,
+    {"composite sky", "composite_sky", Variant::None, Dispatch::Indirect, When::Always, Record::Dispatch,
      {B::frame, T::skyTileTexels, T::distantTexels, I::integratedScattering, I::integratedTransmittance, I::sceneColor},
-     {I::outputImage}, true},
+     {I::outputImage}, true, false, B::skyTiles},
     // The point and spot lights' glow per pixel (shared/glow.h, which reads the media at the light),
     // added to the output over each glowing light's screen rectangle only.
     // Specialized like the froxel passes: the _media variants evaluate the froxel passes' volume list.
@@ -198,9 +198,7 @@ VkPipelineStageFlags passStages(const PassDecl& p) {
         return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     if (p.record == Record::TemporalCopy || p.record == Record::Integrate) return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
-    if (p.dispatch == Dispatch::ExactFroxels || p.dispatch == Dispatch::FarTiles || p.dispatch == Dispatch::AllFarTiles ||
-        p.dispatch == Dispatch::SkyTiles ||
-        p.dispatch == Dispatch::CompositePixels)
+    if (p.dispatch == Dispatch::Indirect || p.dispatch == Dispatch::CompositePixels)
         return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;  // reads its group count
     return VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -195,12 +196,10 @@ enum class Dispatch : uint8_t {
     Screen,       // one per pixel, SCREEN_GROUP_*
     CompositePixels,  // one per pixel that can read fog (FrameResources::compositeLo, compositeHi), SCREEN_GROUP_*;
                       // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
-    FarTiles,     // one workgroup per farTiles entry (indirect; shaders/tile_lists.comp)
-    AllFarTiles,  // one workgroup per allFarTiles entry (indirect; shaders/tile_lists.comp)
-    SkyTiles,     // one workgroup per skyTiles entry (indirect; shaders/tile_lists.comp)
+    Indirect,     // the workgroups PassDecl::indirect's list header counts (the exact froxels' groups, one
+                  // per listed tile of shaders/tile_lists.comp)
     Single,       // one invocation, with distant fog only (the tile lists)
     ShadowCells,  // one per shadow volume cell some reader needs, a dispatch per layer (FrameResources::shadowLayers)
-    ExactFroxels, // one per froxel the light pass listed in exactList, LIGHT_EXACT_GROUP (indirect)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*,
                   // with distant fog only (FrameResources::distantFog)
     DepthTiles,   // one per 8x8 pixel tile of the screen (shared/distant_table.h depthTileCount), SCREEN_GROUP_*,
@@ -281,6 +280,9 @@ struct PassDecl {
     // are listed as SPEC_CULLED_VOLUME (core/media_region.h froxelVolumesInReach). The raster pass
     // (geometry) always takes the key with the volumes out of the surfaces' reach culled instead.
     bool culledVolumes = false;
+    // With Dispatch::Indirect: the list whose header (ExactListHeader) holds the dispatch's group count,
+    // written by an earlier pass (the light pass, tile_lists.comp).
+    std::optional<BufferId> indirect{};
 };
 
 // In execution order; the reads and writes of each entry decide the barriers before it.

@@ -213,6 +213,27 @@ TEST(FrameTable, TexelViewsReadTheirBuffersAfterTheirWriters) {
     }
 }
 
+// An indirect dispatch reads its group count from a list an earlier pass wrote: the list is an
+// indirect buffer (its header reset every frame), the pass names it only with Dispatch::Indirect, and
+// some pass before it writes that buffer.
+TEST(FrameTable, IndirectDispatchesReadAListAnEarlierPassWrote) {
+    std::set<BufferId> written;
+    int indirect = 0;
+    for (const PassDecl& p : kPasses) {
+        EXPECT_EQ(p.dispatch == Dispatch::Indirect, p.indirect.has_value()) << p.label;
+        if (p.indirect) {
+            ++indirect;
+            EXPECT_EQ(decl(*p.indirect).kind, BufferKind::STORAGE_INDIRECT) << p.label;
+            EXPECT_TRUE(written.count(*p.indirect) > 0) << p.label << " reads " << decl(*p.indirect).name
+                                                        << " before any pass writes it";
+        }
+        for (BufferId b : {BufferId::exactList, BufferId::nearTiles, BufferId::farTiles, BufferId::allFarTiles,
+                           BufferId::skyTiles})
+            if (p.writes.contains(ResRef(b))) written.insert(b);
+    }
+    EXPECT_EQ(indirect, 4);  // light exact, composite far, composite all far, composite sky
+}
+
 // distant_fog.comp takes each volume's kind from SPEC_VOLUME_LIST: its pipeline must get the scene's
 // whole list, where every volume's kind is its own (a culled volume would lose its height or depth fog
 // past the froxel far, which no froxel pass's reach covers).
