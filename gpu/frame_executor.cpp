@@ -519,8 +519,9 @@ void dispatchPass(const PassContext& ctx) {
             break;
         }
         case Dispatch::Indirect: vkCmdDispatchIndirect(ctx.cmd, r[*ctx.pass->indirect].buffer.get(), 0); break;
-        case Dispatch::Single:
-            if (r.distantFog) vkCmdDispatch(ctx.cmd, 1, 1, 1);  // the tile lists: empty without distant fog
+        case Dispatch::TileRows:
+            // The tile lists: empty without distant fog.
+            if (r.distantFog) vkCmdDispatch(ctx.cmd, groups(shd::depthTileCount(r.size).y, shd::TILE_LIST_GROUP), 1, 1);
             break;
         case Dispatch::ShadowCells: break;  // one dispatch per layer: recordShadowCells
         case Dispatch::MediaFroxels:

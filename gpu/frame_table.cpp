@@ -91,9 +91,9 @@ const std::array<PassDecl, 18> kPasses{{
      {B::frame, T::volumeTexels, T::lightTexels, T::lightClusterTexels, T::depthTileTexels, B::surfaceLights},
      {B::distantTable}, true},
     // With distant fog, the tiles within the froxel far, those past it, those all sky and the others,
-    // as four indirect dispatches (one invocation walks the depth tiles: tile_lists.comp).
-    {"tile lists", "tile_lists", Variant::None, Dispatch::Single, When::Always, Record::Dispatch,
-     {B::frame, B::depthTiles}, {B::nearTiles, B::farTiles, B::allFarTiles, B::skyTiles}, true},
+    // as four indirect dispatches (one invocation per row of depth tiles: tile_lists.comp).
+    {"tile lists", "tile_lists", Variant::None, Dispatch::TileRows, When::Always, Record::Dispatch,
+     {B::frame, T::depthTileTexels}, {B::nearTiles, B::farTiles, B::allFarTiles, B::skyTiles}, true},
     // Fog over the surfaces from the integrated volume: the region's pixels, or with distant fog the
     // near tiles (composite_body.glsl).
     {"composite", "composite", Variant::None, Dispatch::CompositePixels, When::Always, Record::Composite,

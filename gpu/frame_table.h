@@ -198,7 +198,8 @@ enum class Dispatch : uint8_t {
                       // with distant fog (FrameResources::distantFog) one workgroup per nearTiles entry (indirect)
     Indirect,     // the workgroups PassDecl::indirect's list header counts (the exact froxels' groups, one
                   // per listed tile of shaders/tile_lists.comp)
-    Single,       // one invocation, with distant fog only (the tile lists)
+    TileRows,     // one invocation per row of 8x8 pixel tiles, TILE_LIST_GROUP rows per workgroup, with
+                  // distant fog only (the tile lists)
     ShadowCells,  // one per shadow volume cell some reader needs, a dispatch per layer (FrameResources::shadowLayers)
     TileCorners,  // one per corner of the screen's 8x8 pixel tiles (shared/distant_table.h), SCREEN_GROUP_*,
                   // with distant fog only (FrameResources::distantFog)

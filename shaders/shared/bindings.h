@@ -29,6 +29,9 @@ struct ExactListHeader {
 // The r32i texels of an ExactListHeader: a tile list's texel view (frame_table.h nearTileTexels) holds its
 // tiles from this texel on.
 BRUME_CONST int TILE_LIST_HEADER_TEXELS = 4;
+// The tile lists pass: one invocation per row of 8x8 pixel tiles, this many rows per workgroup (one
+// 8-wide batch on lavapipe).
+BRUME_CONST int TILE_LIST_GROUP = 8;
 // Invocations per workgroup of the exact light pass (one per listed froxel).
 BRUME_CONST int LIGHT_EXACT_GROUP = 64;
 // The light pass: one invocation per run of LIGHT_RUN froxels along z (at most 32: the run's exact
