@@ -7,10 +7,10 @@
 #pragma once
 
 #include <array>
-#include <optional>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -278,8 +278,9 @@ struct PassDecl {
     // SpecKey): code for what the scene lacks is compiled out. Otherwise the shader's defaults.
     bool specialized = false;
     // With `specialized`: the froxel passes' key, where the volumes out of this frame's froxel reach
-    // are listed as SPEC_CULLED_VOLUME (core/media_region.h froxelVolumesInReach). The raster pass
-    // (geometry) always takes the key with the volumes out of the surfaces' reach culled instead.
+    // are listed as SPEC_CULLED_VOLUME (core/media_region.h froxelVolumesInReach), unless the frame
+    // takes the fallbacks (renderer_state.h FrameKeys). The raster pass (geometry) takes the key with
+    // the volumes out of the surfaces' reach culled instead, or its own fallback.
     bool culledVolumes = false;
     // With Dispatch::Indirect: the list whose header (ExactListHeader) holds the dispatch's group count,
     // written by an earlier pass (the light pass, tile_lists.comp).

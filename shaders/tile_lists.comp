@@ -21,7 +21,7 @@
 
 layout(local_size_x = TILE_LIST_GROUP, local_size_y = 1, local_size_z = 1) in;
 
-// Which list tile range goes to: 0 near, 1 far, 2 all far, 3 sky.
+// The list of a tile whose depths span `range` (deepest, shallowest): 0 near, 1 far, 2 all far, 3 sky.
 struct TileClassifier {
     float froxelFar;
     float allFarFrom;
