@@ -341,9 +341,11 @@ TEST(EditorInteraction, CoarseWhileTheDocumentMovesFullWithARestartAtRest) {
     EXPECT_FALSE(p.restartHistory);
     p = in.plan(2, true, Quality::High, 1280, 720);
     EXPECT_TRUE(p.coarse);
+    EXPECT_TRUE(p.moving);
     EXPECT_FALSE(p.restartHistory);
     p = in.plan(2, false, Quality::High, 1280, 720);  // end: at rest
     EXPECT_FALSE(p.coarse);
+    EXPECT_FALSE(p.moving);
     EXPECT_EQ(p.quality, Quality::High);
     EXPECT_EQ(p.width, 1280);
     EXPECT_TRUE(p.restartHistory);
@@ -354,12 +356,16 @@ TEST(EditorInteraction, CoarseWhileTheDocumentMovesFullWithARestartAtRest) {
     EXPECT_TRUE(in.plan(3, false, Quality::High, 1280, 720).restartHistory);
 
     Interaction off(1.0);
-    off.plan(1, false, Quality::Medium, 320, 180);
+    EXPECT_FALSE(off.plan(1, false, Quality::Medium, 320, 180).moving);
     p = off.plan(2, true, Quality::Medium, 320, 180);
     EXPECT_FALSE(p.coarse);
+    EXPECT_TRUE(p.moving);  // full size, but still an interaction: the editor prepares only at rest
     EXPECT_EQ(p.quality, Quality::Medium);
     EXPECT_EQ(p.width, 320);
-    EXPECT_FALSE(off.plan(2, false, Quality::Medium, 320, 180).restartHistory);
+    p = off.plan(2, false, Quality::Medium, 320, 180);
+    EXPECT_FALSE(p.restartHistory);
+    EXPECT_FALSE(p.moving);
+    EXPECT_TRUE(off.plan(3, false, Quality::Medium, 320, 180).moving);  // one edit
 }
 
 // The coarse frames' scale follows the measured frame time toward the budget: a frame over budget

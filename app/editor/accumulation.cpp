@@ -43,6 +43,7 @@ ViewPlan Interaction::plan(uint64_t revision, bool grouping, Quality preset, int
         p.width = std::max(1, width);
         p.height = std::max(1, height);
     }
+    p.moving = grouping || changed;
     p.restartHistory = lastCoarse_ && !p.coarse;
     p.steady = p.coarse && lastCoarse_ && p.scale == lastScale_;
     lastCoarse_ = p.coarse;

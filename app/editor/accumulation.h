@@ -54,6 +54,8 @@ struct ViewPlan {
     int height = 0;
     double scale = 1.0;           // of the window's size
     bool restartHistory = false;  // the first full frame after coarse ones
+    bool moving = false;          // the document changed since the last frame, or a drag is under way
+                                  // (coarse when maxScale < 1; full size otherwise)
     // A coarse frame of the same size as the previous frame: its time measures the scale (the first
     // frame of another size also reallocates the renderer's images).
     bool steady = false;

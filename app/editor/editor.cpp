@@ -265,16 +265,20 @@ std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan) const {
 Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int height, bool force) {
     if (std::exchange(measureFrame_, false)) interaction_.measured(frameMs);
     const ViewPlan plan = interaction_.plan(doc_.revision(), doc_.grouping(), quality_, width, height);
-    if (std::exchange(prepareCoarse_, false) && !plan.coarse && interaction_.maxScale() < 1.0) {
+    if (std::exchange(prepareAtRest_, false) && !plan.moving) {
         // The frame after one at rest: the pipelines of the next drag's coarse frame are made now, while
         // the view rests, not on that frame (a new set of lights or volumes, or the session's first),
         // with the fallbacks it takes where a light or a volume crosses the view's reach mid-drag.
-        const ViewPlan next = interaction_.coarsePlan(width, height);
+        // Without coarse frames (maxScale 1) the frames in motion are the rest plan's.
+        const bool coarse = interaction_.maxScale() < 1.0;
+        const ViewPlan next = coarse ? interaction_.coarsePlan(width, height) : plan;
         const CoarseKey k{doc_.revision(), next.width, next.height, debug_.view};
         if (!(k == prepared_)) {
             prepared_ = k;
-            const auto [scene, request] = frameFor(next);
-            (void)renderer.preparePipelines(scene, request);  // a failure is the coarse frame's to report
+            if (coarse) {
+                const auto [scene, request] = frameFor(next);
+                (void)renderer.preparePipelines(scene, request);  // a failure is the coarse frame's to report
+            }
             // And those of this view's frames at rest: after a drag that took a volume or a light across
             // the view's reach, the frames at rest took the fallbacks (the same image, slower) until now.
             const auto [restScene, restRequest] = frameFor(plan);
@@ -295,7 +299,7 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
     if (!out) return out.error();
     viewSize_ = glm::ivec2(width, height);
     coarse_ = plan.coarse;
-    prepareCoarse_ = !plan.coarse;
+    prepareAtRest_ = !plan.moving;
     // A frame that compiled pipelines or allocated memory is no measure of the next ones: it must not
     // shrink the coarse scale for the rest of the interaction (accumulation.h Interaction::measured).
     measureFrame_ = plan.steady && !out.value().compiled && !out.value().allocated;
