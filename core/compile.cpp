@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "animate.h"
+#include "shaders/shared/distant_table.h"
 #include "shadows.h"
 
 namespace brume {
@@ -290,6 +291,12 @@ shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated 
         a = accumulateDistantPiece(cs, a, dir, b.x, b.y);
     }
     return a;
+}
+
+int distantFogEntries(const CompiledScene& cs, const shd::FrameUniforms& frame) {
+    bool distant = false;
+    for (const shd::VolumeData& v : cs.volumes) distant = distant || shd::distantFogKind(v.kind.x);
+    return distant ? shd::distantTableEntries(frame) : 0;
 }
 
 shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,

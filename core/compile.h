@@ -62,6 +62,11 @@ shd::Accumulated accumulateDistantFog(const CompiledScene& cs, shd::Accumulated 
 // middle (the renderers' distant fog table, shaders/shared/distant_table.h, is made of these).
 shd::Accumulated accumulateDistantPiece(const CompiledScene& cs, shd::Accumulated a, glm::vec3 dir, float s0, float s1);
 
+// The distant fog table's entries per corner for this scene and frame (shared/distant_table.h): 0
+// where no height or depth fog goes on past the froxel far (no such volume, or the froxels reach the
+// camera far). Both renderers tabulate exactly then (the GPU: SPEC_DISTANT_FOG).
+int distantFogEntries(const CompiledScene& cs, const shd::FrameUniforms& frame);
+
 // Per-frame constants for an image of width x height with the given froxel settings.
 // jitter is the sample position inside each froxel, (0.5, 0.5, 0.5) = centres.
 shd::FrameUniforms makeFrameUniforms(const Scene& scene, const CompiledScene& cs, int width, int height,

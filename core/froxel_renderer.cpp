@@ -156,11 +156,9 @@ struct DistantTable {
 DistantTable buildDistantTable(const CompiledScene& cs, const shd::FrameUniforms& frame, int threads) {
     DistantTable t;
     t.corners = shd::distantTableCorners(glm::ivec2(frame.counts));
-    // As the GPU's SPEC_DISTANT_FOG: a table only where height or depth fog goes on past the froxel far
-    // (without, every entry would be the empty fog, and a sky pixel is looked up like the others).
-    bool distant = false;
-    for (const shd::VolumeData& volume : cs.volumes) distant = distant || shd::distantFogKind(volume.kind.x);
-    t.entries = distant ? shd::distantTableEntries(frame) : 0;
+    // A table only where height or depth fog goes on past the froxel far, as the GPU's (without, every
+    // entry would be the empty fog, and a sky pixel is looked up like the others).
+    t.entries = distantFogEntries(cs, frame);
     if (t.entries == 0) return t;
     const int n = t.entries;
     t.values.assign(static_cast<size_t>(t.corners.x * t.corners.y * n), shd::emptyAccumulated());

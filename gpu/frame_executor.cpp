@@ -600,6 +600,14 @@ bool GpuRenderer::State::hasCulledPipelines(const FramePasses& passes, const Fra
     return true;
 }
 
+void GpuRenderer::State::takeFallbacks(const FramePasses& passes) {
+    const FrameKeys fallback = keys.fallbacks();
+    if (!hasCulledPipelines(passes, keys) && hasCulledPipelines(passes, fallback)) keys.froxelFallback = true;
+    if (!geometry.has(keys.surfaceSpec, passes.variant.shapes, passes.spheres) &&
+        geometry.has(fallback.surfaceSpec, passes.variant.shapes, passes.spheres))
+        keys.surfaceSpec = fallback.surfaceSpec;
+}
+
 Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar,
                                              bool readBackVolumes, int historyWriteIndex) {
     timer.reset(cmd);
@@ -643,12 +651,6 @@ Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3
     const VkPipelineLayout layout = bindings.pipelineLayout.get();
     const FramePasses passes{variant, debugParams.view.x != shd::DEBUG_VIEW_FINAL, reuseSurfaces, readBackVolumes,
                              mesh.sphereVertices > 0};
-    // Where the froxel passes' pipelines for this frame's volumes in reach are not made but those with no
-    // volume culled are (RenderRequest::pipelineFallbacks; a volume crossing the view's reach mid-drag):
-    // those, no compile on this frame, the same image.
-    keys.froxelFallback = false;
-    if (pipelineFallbacks && !hasCulledPipelines(passes, keys))
-        keys.froxelFallback = hasCulledPipelines(passes, keys.fallbacks());
     // The pipelines this frame lacks, made together before it records (pipeline.h PipelineBatch).
     PipelineBatch batch;
     requestPipelines(passes, keys, batch);

@@ -22,7 +22,6 @@
 #include "geometry_mesh.h"
 #include "renderer_state.h"
 #include "shaders/shared/bindings.h"
-#include "shaders/shared/distant_table.h"
 #include "shaders/shared/glow.h"
 #include "shaders/shared/local_shadow.h"
 #include "vk_check.h"
@@ -211,9 +210,7 @@ SpecKey sceneSpecKey(const CompiledScene& cs, const shd::FrameUniforms& frame, c
     for (const shd::LightData& l : cs.lights) localMaps = localMaps || shd::localShadowMapped(l, frame.localShadowTexels);
     k[SpecId::SPEC_LOCAL_SHADOW_MAPS] = localMaps ? 1 : 0;
     k[SpecId::SPEC_VDB_SHADOWS] = frame.vdbShadowSamples > 0 ? 1 : 0;
-    bool distant = false;
-    for (const shd::VolumeData& v : cs.volumes) distant = distant || shd::distantFogKind(v.kind.x);
-    k[SpecId::SPEC_DISTANT_FOG] = distant && frame.froxelRange.y < frame.projection.w ? 1 : 0;
+    k[SpecId::SPEC_DISTANT_FOG] = distantFogEntries(cs, frame) > 0 ? 1 : 0;  // as the CPU's table
     k[SpecId::SPEC_INFLUENCERS] = cs.influence.header.count.x > 0 ? 1 : 0;
     k[SpecId::SPEC_SHADOW_REDUCTION] = frame.shadowReduction;
     bool emits = false;  // influencers scale emission, never create it (shared/influence.h)
@@ -426,18 +423,31 @@ Result<FramePlan> planFrames(const Scene& scene, const RenderRequest& request, c
 }  // namespace
 
 Result<bool> GpuRenderer::preparePipelines(const Scene& scene, const RenderRequest& request) {
-    Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
-    if (!planned) return planned.error();
-    const FramePlan& plan = planned.value();
-    Result<VariantKey> variant = variantOf(plan.cs);
-    if (!variant) return variant.error();
+    const std::pair<Scene, RenderRequest> one{scene, request};
+    return preparePipelines(std::span(&one, 1));
+}
+
+Result<bool> GpuRenderer::preparePipelines(std::span<const std::pair<Scene, RenderRequest>> renders) {
+    // Every plan first: a scene that cannot be planned requests nothing.
+    std::vector<std::pair<FramePlan, VariantKey>> plans;
+    for (const auto& [scene, request] : renders) {
+        Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
+        if (!planned) return planned.error();
+        Result<VariantKey> variant = variantOf(planned.value().cs);
+        if (!variant) return variant.error();
+        plans.emplace_back(std::move(planned.value()), variant.value());
+    }
     PipelineBatch batch;
-    for (bool rest : {false, true}) {  // the temporal pass in motion or at rest: not known before the frame
-        FramePasses passes{variant.value(), request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
-                           plan.mesh.sphereVertices > 0};
-        passes.variant.temporalRest = rest;
-        s_->requestPipelines(passes, plan.keys, batch);
-        if (request.pipelineFallbacks) s_->requestPipelines(passes, plan.keys.fallbacks(), batch);
+    for (size_t i = 0; i < plans.size(); ++i) {
+        const RenderRequest& request = renders[i].second;
+        const auto& [plan, variant] = plans[i];
+        for (bool rest : {false, true}) {  // the temporal pass in motion or at rest: not known before the frame
+            FramePasses passes{variant, request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
+                               plan.mesh.sphereVertices > 0};
+            passes.variant.temporalRest = rest;
+            s_->requestPipelines(passes, plan.keys, batch);
+            if (request.pipelineFallbacks) s_->requestPipelines(passes, plan.keys.fallbacks(), batch);
+        }
     }
     const bool missing = batch.size() > 0;
     BRUME_TRY(batch.run());
@@ -451,7 +461,6 @@ Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRe
 Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequest& request, bool readBackVolumes,
                                             bool readBackImage) {
     s_->compiled = false;
-    s_->pipelineFallbacks = request.pipelineFallbacks;
     Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
     if (!planned) return planned.error();
     FramePlan& plan = planned.value();
@@ -486,13 +495,11 @@ Result<GpuRender> GpuRenderer::renderFrames(const Scene& scene, const RenderRequ
     const LightReach& lightReach = plan.lightReach;
     const std::vector<int> reach = lightReachRecord(lightReach, cs.lights.size());
     s_->keys = plan.keys;
-    // The geometry pass's fallback where its own pipelines are missing and the fallback's are made
-    // (RenderRequest::pipelineFallbacks): no compile on this frame, the same image. The froxel passes
-    // choose theirs as each frame records (State::recordFrame).
-    const bool spheres = mesh.sphereVertices > 0;
-    if (request.pipelineFallbacks && !s_->geometry.has(s_->keys.surfaceSpec, s_->variant.shapes, spheres) &&
-        s_->geometry.has(s_->keys.surfaceFallback, s_->variant.shapes, spheres))
-        s_->keys.surfaceSpec = s_->keys.surfaceFallback;
+    // Before the surfaces' reuse check reads the geometry key. The passes of every frame of the call:
+    // the temporal pass's variant is the only one a frame decides, and it is not culled.
+    if (request.pipelineFallbacks)
+        s_->takeFallbacks(FramePasses{s_->variant, request.debugView != shd::DEBUG_VIEW_FINAL, false, readBackVolumes,
+                                      mesh.sphereVertices > 0});
     r.mediaEmits = s_->keys.spec[SpecId::SPEC_EMISSION] != 0;
     s_->glow = glowDispatches(cs.lights, frame, lightReach.glowLights);  // the rectangles ignore the jitter
     writeSurfaceLights(r[BufferId::surfaceLights].mapped, cs.lights, lightReach);

@@ -7,7 +7,9 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/render.h"
@@ -63,6 +65,9 @@ public:
     // the view rests, so that the frames of a drag do not compile (lavapipe: 10-250 ms a pipeline).
     // Whether any was missing.
     Result<bool> preparePipelines(const Scene& scene, const RenderRequest& request);
+    // The same for several renders (the editor's next coarse frame and its frames at rest), in one
+    // batch: the pipelines they lack compile together, one thread per core.
+    Result<bool> preparePipelines(std::span<const std::pair<Scene, RenderRequest>> renders);
     OutputImage outputImage() const;
     const Device& device() const;
 

@@ -93,7 +93,6 @@ struct GpuRenderer::State {
     FrameResources parked;
     bool allocated = false;  // this render's prepare allocated sized resources (GpuRender::allocated)
     bool compiled = false;   // this render created pipelines (GpuRender::compiled)
-    bool pipelineFallbacks = false;  // this render's RenderRequest::pipelineFallbacks
 
     Result<void> createCommands();
     Result<void> createPasses();
@@ -115,6 +114,10 @@ struct GpuRenderer::State {
     void requestPipelines(const FramePasses& passes, const FrameKeys& frameKeys, PipelineBatch& batch);
     // Whether the pipelines such a frame's culled passes (PassDecl::culledVolumes) use with these keys are made.
     bool hasCulledPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const;
+    // RenderRequest::pipelineFallbacks: `keys` take each fallback (FrameKeys::fallbacks: the culled
+    // froxel passes', all or none; the geometry pass's) whose own pipelines are missing where the
+    // fallback's are made: the same image, no compile in this call.
+    void takeFallbacks(const FramePasses& passes);
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage

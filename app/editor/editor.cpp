@@ -272,17 +272,15 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
         // Without coarse frames (maxScale 1) the frames in motion are the rest plan's.
         const bool coarse = interaction_.maxScale() < 1.0;
         const ViewPlan next = coarse ? interaction_.coarsePlan(width, height) : plan;
-        const CoarseKey k{doc_.revision(), next.width, next.height, debug_.view};
+        const PreparedKey k{doc_.revision(), next.width, next.height, debug_.view};
         if (!(k == prepared_)) {
             prepared_ = k;
-            if (coarse) {
-                const auto [scene, request] = frameFor(next);
-                (void)renderer.preparePipelines(scene, request);  // a failure is the coarse frame's to report
-            }
             // And those of this view's frames at rest: after a drag that took a volume or a light across
             // the view's reach, the frames at rest took the fallbacks (the same image, slower) until now.
-            const auto [restScene, restRequest] = frameFor(plan);
-            (void)renderer.preparePipelines(restScene, restRequest);
+            // One batch: what both lack compiles together.
+            std::vector<std::pair<Scene, RenderRequest>> renders{frameFor(plan)};
+            if (coarse) renders.push_back(frameFor(next));
+            (void)renderer.preparePipelines(renders);  // a failure is the frame's to report
         }
     }
     const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
@@ -314,7 +312,7 @@ void Editor::rendererReplaced() {
     hasImage_ = false;
     last_.reset();
     accumulation_ = Accumulation();
-    prepared_ = CoarseKey{};  // the new renderer has made no pipeline yet
+    prepared_ = PreparedKey{};  // the new renderer has made no pipeline yet
 }
 
 gpu::OutputImage Editor::viewportImage(const gpu::GpuRenderer& renderer) const {

@@ -131,13 +131,13 @@ private:
     // After a frame at rest, the next frame makes the pipelines of the next coarse frame (when there are
     // coarse frames) and of the frames at rest, with their fallbacks (gpu::GpuRenderer::preparePipelines),
     // unless they were made for this document and size.
-    struct CoarseKey {
+    struct PreparedKey {
         uint64_t revision = ~uint64_t(0);
         int width = 0, height = 0, debugView = 0;
-        bool operator==(const CoarseKey&) const = default;
+        bool operator==(const PreparedKey&) const = default;
     };
     bool prepareAtRest_ = false;
-    CoarseKey prepared_;
+    PreparedKey prepared_;
     std::pair<Scene, RenderRequest> frameFor(const ViewPlan& plan) const;
     bool measureFrame_ = false;  // the last frame rendered a steady coarse plan: frameMs times it
     std::optional<gpu::GpuRender> last_;
