@@ -16,9 +16,14 @@ Result<DisplayPass> DisplayPass::create(const Device& device) {
     Result<DescriptorBindings> b = createDescriptorSet(device, bindings, sizeof(shd::DisplayParams), "display");
     if (!b) return b.error();
     p.bindings_ = std::move(b.value());
-    Result<ComputePass> pass = createComputePass(device, p.bindings_.pipelineLayout.get(), "display.comp");
-    if (!pass) return pass.error();
-    p.pass_ = std::move(pass.value());
+    // Two builds: lavapipe would run the bilinear filter behind an untaken branch for every pixel of a
+    // frame at rest (docs/performance.md, "display").
+    Result<ComputePass> exact = createComputePass(device, p.bindings_.pipelineLayout.get(), "display.comp");
+    if (!exact) return exact.error();
+    p.exact_ = std::move(exact.value());
+    Result<ComputePass> scaled = createComputePass(device, p.bindings_.pipelineLayout.get(), "display_scaled.comp");
+    if (!scaled) return scaled.error();
+    p.scaled_ = std::move(scaled.value());
     return p;
 }
 
@@ -43,7 +48,7 @@ void DisplayPass::record(const Device& device, VkCommandBuffer cmd, const Output
     // The renderer's last pass (composite or debug view) wrote the image in an earlier submission.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    bindComputePass(cmd, pass_, bindings_);
+    bindComputePass(cmd, params.sourceSize == params.viewSize ? exact_ : scaled_, bindings_);
     vkCmdPushConstants(cmd, bindings_.pipelineLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
     vkCmdDispatch(cmd, static_cast<uint32_t>(shd::brumeDivRoundUp(params.windowSize.x, shd::SCREEN_GROUP_X)),
                   static_cast<uint32_t>(shd::brumeDivRoundUp(params.windowSize.y, shd::SCREEN_GROUP_Y)), 1);

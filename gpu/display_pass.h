@@ -1,7 +1,7 @@
 // The editor's viewport on the device: the renderer's output image (GpuRenderer::outputImage) ->
 // a buffer of 8-bit pixels (window-sized, or the source's size for the editor's coarse frames,
 // app/editor/present_path.h), through the PNG's display transform
-// (shaders/display.comp, shaders/shared/display.h), which the presenter copies into the
+// (shaders/display_body.glsl, shaders/shared/display.h), which the presenter copies into the
 // swapchain image. It replaces a readback of the rgba32f image, a tone map on the CPU and an
 // upload (docs/editor.md).
 //
@@ -27,7 +27,8 @@ public:
 
 private:
     DescriptorBindings bindings_;  // binding 0: the source image, 1: the window's pixels
-    ComputePass pass_;
+    ComputePass exact_;   // display.comp: a source of the viewport's size
+    ComputePass scaled_;  // display_scaled.comp: bilinear from a source of another size
 };
 
 }  // namespace brume::gpu

@@ -1,4 +1,4 @@
-// The editor's window from the renderer's output, on the device (shaders/display.comp,
+// The editor's window from the renderer's output, on the device (shaders/display_body.glsl,
 // gpu/display_pass.h): the same display transform and rounding as the PNG writer
 // (io/image_io.cpp: displayFromRadiance, then round(clamp(v) * 255)), so the viewport's bytes are
 // the PNG's, plus a bilinear upscale for the editor's coarse frames while the user interacts.
