@@ -54,6 +54,10 @@ void drawThumbnail(const ThumbnailColors* t) {
     const ImVec2 p = ImGui::GetCursorScreenPos();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     ImGui::Dummy(ImVec2(kThumbWidth, kThumbHeight));
+    // Outside the panel's visible rectangle: nothing to draw. A thumbnail is 880 shaded quads (3,520
+    // vertices) that the UI would build, upload and set up every frame for every preset in the
+    // library, shown or not (docs/performance.md, "thumbs").
+    if (!ImGui::IsItemVisible()) return;
     if (!t || t->columns == 0) {
         dl->AddRectFilled(p, ImVec2(p.x + kThumbWidth, p.y + kThumbHeight), IM_COL32(40, 40, 40, 255));
         dl->AddText(ImVec2(p.x + 8, p.y + kThumbHeight * 0.5f - 7), IM_COL32(160, 160, 160, 255), "no thumbnail");
