@@ -11,6 +11,7 @@
 #include "app/editor/autosave.h"
 #include "app/editor/document.h"
 #include "app/editor/gizmo_math.h"
+#include "app/editor/frame_pacing.h"
 #include "app/editor/present_path.h"
 #include "app/editor/view.h"
 #include "io/scene_json.h"
@@ -754,4 +755,44 @@ TEST(EditorPresentPath, RestIsExactCoarseIsBlittedAndWithoutBlitFallsBack) {
     EXPECT_EQ(choosePresentPath(true, coarse, window, false), PresentPath::Window);
     // A source of another aspect (a frame after a resize, before the next render) is scaled too.
     EXPECT_EQ(choosePresentPath(true, glm::ivec2(1280, 700), window, true), PresentPath::Upscale);
+}
+
+// The loop's sleep (app/editor/frame_pacing.h): none while anything moves; after a few quiet frames
+// the idle sleep, shorter while a job's progress shows or a script's wait ends sooner; any activity or
+// an early wake starts the count again.
+TEST(EditorFramePacing, SleepsOnlyAfterQuietFramesAndWakesForActivity) {
+    using editor::FrameActivity;
+    using editor::FramePacer;
+    FramePacer p;
+    const FrameActivity quiet;
+    auto busy = [](auto set) {
+        FrameActivity a;
+        set(a);
+        return a;
+    };
+    EXPECT_EQ(p.next(busy([](FrameActivity& a) { a.rendered = true; })), 0.0);
+    for (int i = 1; i < FramePacer::kSettleFrames; ++i) EXPECT_EQ(p.next(quiet), 0.0) << i;
+    EXPECT_EQ(p.next(quiet), FramePacer::kIdleWaitSeconds);
+    EXPECT_EQ(p.next(quiet), FramePacer::kIdleWaitSeconds);
+    for (const FrameActivity& a : {busy([](FrameActivity& a) { a.rendered = true; }),
+                                   busy([](FrameActivity& a) { a.scriptStepDue = true; }),
+                                   busy([](FrameActivity& a) { a.playing = true; }),
+                                   busy([](FrameActivity& a) { a.fixedFrames = true; }),
+                                   busy([](FrameActivity& a) { a.woken = true; })}) {
+        EXPECT_EQ(p.next(a), 0.0);
+        for (int i = 1; i < FramePacer::kSettleFrames; ++i) EXPECT_EQ(p.next(quiet), 0.0) << i;
+        EXPECT_GT(p.next(quiet), 0.0);
+    }
+    // A running job: redrawn at its progress rate, not at once and not at the idle rate.
+    const FrameActivity job = busy([](FrameActivity& a) { a.jobRunning = true; });
+    EXPECT_EQ(p.next(job), FramePacer::kProgressWaitSeconds);
+    EXPECT_LT(FramePacer::kProgressWaitSeconds, FramePacer::kIdleWaitSeconds);
+    // A script's pending wait that ends sooner than the sleep cuts it short; a longer one does not.
+    EXPECT_EQ(p.next(busy([](FrameActivity& a) { a.scriptWaitLeft = 0.2; })), 0.2);
+    EXPECT_EQ(p.next(busy([](FrameActivity& a) { a.scriptWaitLeft = 7.0; })), FramePacer::kIdleWaitSeconds);
+    EXPECT_EQ(p.next(busy([](FrameActivity& a) {
+                  a.jobRunning = true;
+                  a.scriptWaitLeft = 0.05;
+              })),
+              0.05);
 }

@@ -194,6 +194,31 @@ TEST(EditorWindow, CoarseFrameIsTheToneMappedSourceScaledUp) {
     fs::remove_all(dir);
 }
 
+// The idle editor sleeps (app/editor/frame_pacing.h): once the view has converged and nothing moves,
+// it draws ~2 frames a second instead of redrawing the same UI without end (which took ~1.2 of this
+// machine's 2 cores). The count of UI-only frames over a quiet 3 s is bounded by the pacer's sleep,
+// whatever the machine's speed; without it a 160x90 window draws hundreds.
+TEST(EditorWindow, AnIdleEditorSleepsBetweenFrames) {
+    REQUIRE_XVFB();
+    const fs::path dir = tempDir("idle");
+    std::ofstream(dir / "idle.txt") << "wait 3\nquit\n";
+    std::string log;
+    ASSERT_EQ(sh(kXvfb + editor(dir / "scene.json") + kSmall + " --bench --script " + quoted((dir / "idle.txt").string()),
+                 &log),
+              0)
+        << log;
+    size_t uiFrames = 0;
+    const size_t at = log.find("  ui ");
+    ASSERT_NE(at, std::string::npos) << log;
+    ASSERT_EQ(std::sscanf(log.c_str() + at, "  ui %zu frames", &uiFrames), 1) << log;
+    std::printf("UI-only frames over a quiet 3 s: %zu\n", uiFrames);
+    // 3 s / 0.5 s sleeps, the settling frames after the last render, and a few early wakes (the
+    // window's first events).
+    EXPECT_LE(uiFrames, 20u) << log;
+    EXPECT_GE(uiFrames, 3u) << log;  // it still draws: clocks and notifications advance
+    fs::remove_all(dir);
+}
+
 TEST(EditorWindow, ScriptedSessionAddsMovesRetunesSavesAndUndoes) {
     REQUIRE_XVFB();
     const fs::path dir = tempDir("script");

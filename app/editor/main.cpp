@@ -18,6 +18,7 @@
 
 #include "core/settings.h"
 #include "editor.h"
+#include "frame_pacing.h"
 #include "frame_stats.h"
 #include "gpu/vk_check.h"
 #include "io/atomic_file.h"
@@ -191,6 +192,8 @@ struct LoopState {
     double lastCoarseStart = -1.0;  // --bench: the start of the latest coarse frame, until the view settles
     int frame = 0;
     std::string shownTitle;
+    FramePacer pacer;
+    double sleepSeconds = 0.0;  // before the next frame (FramePacer)
 };
 // editorLoop's answer when the device was lost: runEditor recreates it and calls the loop again.
 constexpr int kDeviceLost = -1;
@@ -219,7 +222,15 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         // The title follows New / Open / Save As.
         const std::string title = "brume-editor - " + (editor.doc().path().empty() ? std::string("untitled") : editor.doc().path());
         if (title != shownTitle) glfwSetWindowTitle(presenter.window(), title.c_str()), shownTitle = title;
-        glfwPollEvents();
+        // Nothing to do since a few frames: sleep until an event or the pacer's timeout.
+        bool woken = false;
+        if (st.sleepSeconds > 0.0) {
+            const double sleepStart = seconds();
+            glfwWaitEventsTimeout(st.sleepSeconds);
+            woken = seconds() - sleepStart < 0.9 * st.sleepSeconds;
+        } else {
+            glfwPollEvents();
+        }
         const double now = seconds();
         if (!droppedPaths.empty()) {
             (void)editor.run(Action{"drop", std::exchange(droppedPaths, {})});  // failures are notifications
@@ -311,6 +322,17 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             break;
         }
         if (editor.quitRequested || ui.closeConfirmed) break;
+        FrameActivity activity;
+        activity.rendered = editor.renders() != rendersBefore;
+        const bool scriptLeft = script.next < script.lines.size();
+        const double after = seconds();
+        activity.scriptStepDue = scriptLeft && after >= script.resumeAt;
+        activity.scriptWaitLeft = scriptLeft && after < script.resumeAt ? script.resumeAt - after : -1.0;
+        activity.playing = editor.sceneTime().playing() && sceneScrolls(editor.doc().scene());
+        activity.jobRunning = editor.qualityTool.job.running();
+        activity.fixedFrames = o.frames > 0;
+        activity.woken = woken;
+        st.sleepSeconds = st.pacer.next(activity);
     }
     if (o.bench) std::printf("%s", stats.report().c_str());
     editor.autosave().discard();  // an orderly exit: saved, or the user chose to discard
