@@ -600,6 +600,23 @@ bool GpuRenderer::State::hasCulledPipelines(const FramePasses& passes, const Fra
     return true;
 }
 
+bool GpuRenderer::State::hasPipelines(const FramePasses& passes, const FrameKeys& frameKeys, bool fallbacks) const {
+    const FrameKeys fallback = frameKeys.fallbacks();
+    // The culled passes all under one key or all under the other (takeFallbacks).
+    if (!hasCulledPipelines(passes, frameKeys) && !(fallbacks && hasCulledPipelines(passes, fallback))) return false;
+    for (const PassDecl& p : kPasses) {
+        if (p.record == Record::Geometry) {
+            if (passes.records(p) && !geometry.has(frameKeys.surfaceSpec, passes.variant.shapes, passes.spheres) &&
+                !(fallbacks && geometry.has(fallback.surfaceSpec, passes.variant.shapes, passes.spheres)))
+                return false;
+        } else if (!p.culledVolumes && passes.dispatches(p) &&
+                   !pipelines.has(variantShaderName(p.shader, p.variant, passes.variant), frameKeys.of(p))) {
+            return false;
+        }
+    }
+    return true;
+}
+
 void GpuRenderer::State::takeFallbacks(const FramePasses& passes) {
     const FrameKeys fallback = keys.fallbacks();
     if (!hasCulledPipelines(passes, keys) && hasCulledPipelines(passes, fallback)) keys.froxelFallback = true;

@@ -454,6 +454,21 @@ Result<bool> GpuRenderer::preparePipelines(std::span<const std::pair<Scene, Rend
     return missing;
 }
 
+Result<bool> GpuRenderer::hasPipelines(const Scene& scene, const RenderRequest& request) const {
+    Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
+    if (!planned) return planned.error();
+    const FramePlan& plan = planned.value();
+    Result<VariantKey> variant = variantOf(plan.cs);
+    if (!variant) return variant.error();
+    for (bool rest : {false, true}) {
+        FramePasses passes{variant.value(), request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
+                           plan.mesh.sphereVertices > 0};
+        passes.variant.temporalRest = rest;
+        if (!s_->hasPipelines(passes, plan.keys, request.pipelineFallbacks)) return false;
+    }
+    return true;
+}
+
 Result<GpuRender> GpuRenderer::renderOnDevice(const Scene& scene, const RenderRequest& request) {
     return renderFrames(scene, request, false, false);
 }

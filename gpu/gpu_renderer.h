@@ -68,6 +68,11 @@ public:
     // The same for several renders (the editor's next coarse frame and its frames at rest), in one
     // batch: the pipelines they lack compile together, one thread per core.
     Result<bool> preparePipelines(std::span<const std::pair<Scene, RenderRequest>> renders);
+    // Whether a render of (scene, request) would find every pipeline it needs made, with the
+    // fallbacks RenderRequest::pipelineFallbacks lets it take (for its temporal pass in motion and at
+    // rest): a render that would compile (10-250 ms a pipeline on lavapipe) answers false. Compiles
+    // nothing. The editor asks it for a stand-in scene after a hide (app/editor/view.h HiddenAs).
+    Result<bool> hasPipelines(const Scene& scene, const RenderRequest& request) const;
     OutputImage outputImage() const;
     const Device& device() const;
 

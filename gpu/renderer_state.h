@@ -114,6 +114,9 @@ struct GpuRenderer::State {
     void requestPipelines(const FramePasses& passes, const FrameKeys& frameKeys, PipelineBatch& batch);
     // Whether the pipelines such a frame's culled passes (PassDecl::culledVolumes) use with these keys are made.
     bool hasCulledPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const;
+    // Every pipeline a frame of `passes` records is made, under frameKeys or, with fallbacks, where
+    // takeFallbacks would take them (GpuRenderer::hasPipelines).
+    bool hasPipelines(const FramePasses& passes, const FrameKeys& frameKeys, bool fallbacks) const;
     // RenderRequest::pipelineFallbacks: `keys` take each fallback (FrameKeys::fallbacks: the culled
     // froxel passes', all or none; the geometry pass's) whose own pipelines are missing where the
     // fallback's are made: the same image, no compile in this call.

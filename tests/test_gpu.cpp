@@ -18,6 +18,7 @@
 
 #include "core/geometry.h"
 #include "core/render.h"
+#include "app/editor/view.h"
 #include "gpu/gpu_renderer.h"
 #include "gpu_test_support.h"
 #include "ground_shadow.h"
@@ -1126,6 +1127,50 @@ TEST_F(GpuTest, AVolumeCrossingTheReachTakesThePreparedFallbackInsteadOfCompilin
     ASSERT_TRUE(expectedIn);
     EXPECT_LT(relativeMeanAbsError(in.value().image, expectedIn->image), kFallbackRounding);
     EXPECT_TRUE(other.value()->validationMessages().empty());
+}
+
+// The editor's stand-ins for hidden volumes (app/editor/view.h HiddenAs::StandIns): a hidden volume
+// kept dark in its list renders the image of the scene without it, on the pipelines made for the scene
+// before the hide, where the scene without it has a new list whose pipelines are not made.
+TEST_F(GpuTest, HiddenStandInsRenderTheSceneWithoutThemOnThePipelinesOfBefore) {
+    Scene s = boxHeightSunPointScene();
+    RenderRequest request = smallRequest();
+    request.quality = Quality::Low;
+    request.pipelineFallbacks = true;  // as the editor's
+    ASSERT_TRUE(renderer->render(s, request).ok());
+    ASSERT_TRUE(renderer->preparePipelines(s, request).ok());
+    const Result<bool> before = renderer->hasPipelines(s, request);
+    ASSERT_TRUE(before.ok()) << before.error().message;
+    EXPECT_TRUE(before.value());
+    struct Hide {
+        const char* what;
+        size_t index;
+    };
+    for (const Hide h : {Hide{"the box", 0}, Hide{"the height fog", 1}}) {
+        Scene doc = s;
+        doc.volumes[h.index].hidden = true;
+        const Scene without = editor::visibleScene(doc);
+        const Scene standIns = editor::visibleScene(doc, editor::HiddenAs::StandIns);
+        ASSERT_EQ(standIns.volumes.size(), s.volumes.size()) << h.what;
+        EXPECT_EQ(standIns.volumes[h.index].medium.scattering, glm::vec3(0.0f)) << h.what;
+        const Result<bool> withoutReady = renderer->hasPipelines(without, request);
+        const Result<bool> standInsReady = renderer->hasPipelines(standIns, request);
+        ASSERT_TRUE(withoutReady.ok() && standInsReady.ok()) << h.what;
+        EXPECT_FALSE(withoutReady.value()) << h.what << ": its list is new";
+        EXPECT_TRUE(standInsReady.value()) << h.what;
+        auto out = renderer->render(standIns, request);
+        ASSERT_TRUE(out.ok()) << h.what << ": " << out.error().message;
+        EXPECT_FALSE(out.value().compiled) << h.what;
+        const std::optional<gpu::GpuRender> expected = renderByAFreshRenderer(without, request);
+        ASSERT_TRUE(expected) << h.what;
+        const double err = relativeMeanAbsError(out.value().image, expected->image);
+        std::printf("%s hidden: stand-ins vs the scene without it %.2e\n", h.what, err);
+        EXPECT_LT(err, kFallbackRounding) << h.what;
+        // And hasPipelines answers what render() does: the scene without it compiles.
+        auto compiled = renderer->render(without, request);
+        ASSERT_TRUE(compiled.ok()) << h.what;
+        EXPECT_TRUE(compiled.value().compiled) << h.what;
+    }
 }
 
 TEST(GpuDevice, UnknownDeviceNameIsAnErrorNamingTheAvailableDevices) {

@@ -18,6 +18,7 @@
 #include "gpu/gpu_renderer.h"
 #include "quality_job.h"
 #include "scene_time.h"
+#include "view.h"
 
 namespace brume::editor {
 
@@ -138,7 +139,11 @@ private:
     };
     bool prepareAtRest_ = false;
     PreparedKey prepared_;
-    std::pair<Scene, RenderRequest> frameFor(const ViewPlan& plan) const;
+    std::pair<Scene, RenderRequest> frameFor(const ViewPlan& plan, HiddenAs hidden = HiddenAs::Removed) const;
+    // The hidden volumes the last preparation made pipelines for: after a hide or show
+    // since, a frame whose pipelines are not made renders the stand-ins if theirs are (view.h
+    // HiddenAs::StandIns): the same image, without compiling on that frame.
+    std::vector<bool> preparedHidden_;
     bool measureFrame_ = false;  // the last frame rendered a steady coarse plan: frameMs times it
     std::optional<gpu::GpuRender> last_;
     Accumulation accumulation_;

@@ -46,6 +46,9 @@ void FrameStats::add(const std::string& kind, double frameMs, const std::vector<
 
 void FrameStats::addCoarseScale(double scale) { scales_.push_back(scale); }
 void FrameStats::addSettle(double ms) { settleMs_.push_back(ms); }
+void FrameStats::addCompiled() {
+    if (frames_ > 1) compiled_.push_back(frames_);
+}
 
 std::string FrameStats::report() const {
     std::string out = "bench: frame wall time (frames after the first)\n  " + line("all", all_.frameMs, all_.frame) + "\n";
@@ -72,6 +75,9 @@ std::string FrameStats::report() const {
                       settleMs_.size(), percentile(settleMs_, 0.5), percentile(settleMs_, 1.0));
         out += buf;
     }
+    out += "  compiled " + std::to_string(compiled_.size()) + " frames (pipelines made in the frame's render)";
+    for (size_t i = 0; i < compiled_.size(); ++i) out += (i == 0 ? ": " : ", ") + std::to_string(compiled_[i]);
+    out += "\n";
     return out;
 }
 

@@ -21,6 +21,9 @@ public:
     // From the start of the last coarse frame of an interaction (the frame of its last edit) to the
     // end of the first full-preset frame after it: when the view shows the preset again.
     void addSettle(double ms);
+    // The frame last added made pipelines in its render (gpu::GpuRender::compiled): a hitch that a
+    // fallback or a stand-in should have avoided. Not counted for the first frame.
+    void addCompiled();
     std::string report() const;
 
 private:
@@ -33,6 +36,7 @@ private:
     int frames_ = 0;
     std::vector<double> scales_;
     std::vector<double> settleMs_;
+    std::vector<int> compiled_;  // frame numbers
     Samples all_;
     std::map<std::string, Samples> byKind_;
 };

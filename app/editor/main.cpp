@@ -316,6 +316,7 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             if (Result<std::vector<gpu::PassTiming>> pp = presenter.lastParts(); pp)
                 parts.insert(parts.end(), pp.value().begin(), pp.value().end());
             stats.add(kind, editor.frameMs, parts, presentMs);
+            if (rendered && editor.lastRender()->compiled) stats.addCompiled();
         }
         if (last) {
             if (frame > 1) std::printf("frames: %d, mean frame time (after the first): %.1f ms\n", frame, totalMs / (frame - 1));

@@ -115,13 +115,27 @@ std::vector<std::array<glm::vec3, 2>> volumeWireframe(const Volume& v) {
     return lines;
 }
 
-Scene visibleScene(const Scene& scene) {
+Scene visibleScene(const Scene& scene, HiddenAs hidden) {
     Scene s = scene;
+    if (hidden == HiddenAs::StandIns) {
+        for (Volume& v : s.volumes) {
+            if (!v.hidden) continue;
+            v.hidden = false;
+            v.medium.scattering = v.medium.absorption = v.medium.emission = glm::vec3(0.0f);
+            v.keys.clear();  // a keyed medium would light it again
+        }
+    }
     dropHidden(s.volumes);
     dropHidden(s.lights);
     dropHidden(s.geometry);
     dropHidden(s.influencers);
     return s;
+}
+
+std::vector<bool> hiddenVolumes(const Scene& scene) {
+    std::vector<bool> h;
+    for (const Volume& v : scene.volumes) h.push_back(v.hidden);
+    return h;
 }
 
 Scene withoutViewState(Scene scene) {

@@ -16,8 +16,21 @@
 
 namespace brume::editor {
 
+// How visibleScene treats hidden volumes (hidden lights, geometry and influencers are always left out).
+enum class HiddenAs {
+    Removed,   // left out: what the viewport shows
+    StandIns,  // kept in the list, dark: it scatters, absorbs and emits nothing and has no keys. The
+               // same image as Removed (it adds exactly 0 everywhere), and the volume list of before
+               // the hide, so the renderer's pipelines for that list serve it: the editor renders the
+               // stand-ins after a hide or show until the pipelines of the scene without them are made
+               // (Editor::renderIfNeeded). A dark light would not help: lights of intensity 0 are
+               // culled like removed ones (core/light_reach.cpp).
+};
+
 // The scene without its hidden volumes, lights and geometry (what the viewport renders).
-Scene visibleScene(const Scene& scene);
+Scene visibleScene(const Scene& scene, HiddenAs hidden = HiddenAs::Removed);
+// Which volumes are hidden, in list order.
+std::vector<bool> hiddenVolumes(const Scene& scene);
 // The scene with every hidden flag cleared (what a file holds: hidden is not saved).
 Scene withoutViewState(Scene scene);
 
