@@ -1,7 +1,8 @@
 #!/bin/sh
 # Editor benchmark (issue 11): a scripted drag of a volume, a camera orbit, a drag of a light out of
-# the view's reach and a drag of a volume out of it (without the fallbacks, a pipeline compile mid-drag:
-# see each run's slowest frame) in brume-editor,
+# the view's reach, a drag of a volume out of it (without the fallbacks, a pipeline compile mid-drag:
+# see each run's slowest frame) and volumes hidden and shown (without the stand-ins, a compile on
+# the frames after each hide: see "compiled") in brume-editor,
 # 1280x720, the default scene at its preset (high), UI shown, under Xvfb; each run prints the median
 # and p95 frame wall time per kind of frame (coarse while interacting, rest, ui) and the per-pass
 # median GPU ms (brume-editor --bench).
@@ -20,7 +21,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 round=1
 while [ "$round" -le "$rounds" ]; do
-    for script in editor_drag editor_orbit editor_light_drag editor_volume_out; do
+    for script in editor_drag editor_orbit editor_light_drag editor_volume_out editor_hide; do
         for exe in "$@"; do
             echo "== round $round, $script, $exe"
             # XDG_CONFIG_HOME: keep the run off the user's recent-files list.
