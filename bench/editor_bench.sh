@@ -1,8 +1,8 @@
 #!/bin/sh
 # Editor benchmark (issue 11): a scripted drag of a volume, a camera orbit, a drag of a light out of
 # the view's reach, a drag of a volume out of it (without the fallbacks, a pipeline compile mid-drag:
-# see each run's slowest frame) and volumes hidden and shown (without the stand-ins, a compile on
-# the frames after each hide: see "compiled") in brume-editor,
+# see each run's slowest frame) and volumes hidden, shown and deleted (without the stand-ins, a compile on
+# the frames after each: see "compiled") in brume-editor,
 # 1280x720, the default scene at its preset (high), UI shown, under Xvfb; each run prints the median
 # and p95 frame wall time per kind of frame (coarse while interacting, rest, ui) and the per-pass
 # median GPU ms (brume-editor --bench).

@@ -796,3 +796,57 @@ TEST(EditorFramePacing, SleepsOnlyAfterQuietFramesAndWakesForActivity) {
               })),
               0.05);
 }
+
+// The stand-ins' list (app/editor/view.h withStandIns): the shown volumes in their order, a dark copy of
+// each volume of before that is gone, at its place; none when nothing is gone or when the shown list
+// is not an ordered subset of before's by kind.
+TEST(EditorStandIns, MissingVolumesComeBackDarkAtTheirPlaceAndNothingElse) {
+    Volume box;
+    box.type = VolumeType::Box;
+    box.name = "box";
+    box.medium.scattering = glm::vec3(0.5f);
+    box.medium.emission = glm::vec3(0.1f);
+    Volume fog = box;
+    fog.type = VolumeType::Height;
+    fog.name = "fog";
+    Volume ellipsoid = box;
+    ellipsoid.type = VolumeType::Ellipsoid;
+    ellipsoid.name = "ellipsoid";
+    KeyTrack track;
+    track.target = "medium.scattering";
+    ellipsoid.keys.push_back(track);
+    Scene before;
+    before.volumes = {box, fog, ellipsoid};
+
+    Scene shown = before;
+    shown.volumes.erase(shown.volumes.begin() + 1);  // the fog hidden or deleted
+    shown.volumes[1].transform.translation.x = 3.0f;  // and the ellipsoid moved since
+    const std::optional<Scene> s = withStandIns(shown, before.volumes);
+    ASSERT_TRUE(s);
+    ASSERT_EQ(s->volumes.size(), 3u);
+    EXPECT_EQ(s->volumes[0], shown.volumes[0]);
+    EXPECT_EQ(s->volumes[2], shown.volumes[1]);  // the moved one, as shown
+    const Volume& dark = s->volumes[1];
+    EXPECT_EQ(dark.name, "fog");
+    EXPECT_EQ(dark.type, VolumeType::Height);
+    EXPECT_EQ(dark.medium.scattering, glm::vec3(0.0f));
+    EXPECT_EQ(dark.medium.absorption, glm::vec3(0.0f));
+    EXPECT_EQ(dark.medium.emission, glm::vec3(0.0f));
+
+    // A keyed volume's stand-in has no keys (a keyed medium would light it).
+    Scene noEllipsoid = before;
+    noEllipsoid.volumes.pop_back();
+    const std::optional<Scene> k = withStandIns(noEllipsoid, before.volumes);
+    ASSERT_TRUE(k);
+    EXPECT_TRUE(k->volumes[2].keys.empty());
+    EXPECT_EQ(k->volumes[2].medium.scattering, glm::vec3(0.0f));
+
+    // Nothing gone, a volume added, or the shown list in another order: no stand-ins.
+    EXPECT_FALSE(withStandIns(before, before.volumes));
+    Scene reordered;
+    reordered.volumes = {ellipsoid, box};
+    EXPECT_FALSE(withStandIns(reordered, before.volumes));
+    Scene added;
+    added.volumes = {box, box};  // two boxes where before had one: not a subset by kind
+    EXPECT_FALSE(withStandIns(added, before.volumes));
+}

@@ -242,7 +242,7 @@ Result<void> Editor::viewAction(const Action& a) {
     return {};
 }
 
-std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan, HiddenAs hidden) const {
+std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan) const {
     RenderRequest request;
     request.width = plan.width;
     request.height = plan.height;
@@ -256,7 +256,7 @@ std::pair<Scene, RenderRequest> Editor::frameFor(const ViewPlan& plan, HiddenAs 
     // this frame. At rest too, so that the first full-preset frame after such a drag does not compile
     // either: the next preparation (renderIfNeeded) makes the pipelines of the new reach.
     request.pipelineFallbacks = true;
-    Scene shown = visibleScene(doc_.scene(), hidden);
+    Scene shown = visibleScene(doc_.scene());
     shown.time_s = static_cast<float>(time_.seconds());
     if (plan.coarse) shown.froxels.tile_px = coarseTilePx(resolveFroxelSettings(shown, Quality::Low).tile_px, plan.scale);
     return {std::move(shown), request};
@@ -281,23 +281,24 @@ Result<void> Editor::renderIfNeeded(gpu::GpuRenderer& renderer, int width, int h
             std::vector<std::pair<Scene, RenderRequest>> renders{frameFor(plan)};
             if (coarse) renders.push_back(frameFor(next));
             (void)renderer.preparePipelines(renders);  // a failure is the frame's to report
-            preparedHidden_ = hiddenVolumes(doc_.scene());
+            preparedVolumes_ = renders.front().first.volumes;
         }
     }
     const ViewKey key{doc_.revision(), plan.quality, plan.width, plan.height, debug_.view, debug_.slice, time_.seconds()};
     if (!accumulation_.wantsFrame(key, doc_.scene(), force)) return {};
     auto [shown, request] = frameFor(plan);
-    if (const std::vector<bool> hidden = hiddenVolumes(doc_.scene());
-        hidden != preparedHidden_ && std::find(hidden.begin(), hidden.end(), true) != hidden.end()) {
-        // A hide or show of a volume since the last preparation: where this scene's pipelines are not
-        // made (its volume list is new: 0.4-1 s of compiling on lavapipe) but the stand-ins' are (the
-        // list of before the hide), the stand-ins: the same image. The next preparation at rest
-        // makes this scene's, and the frames after it render the scene itself.
+    if (shown.volumes.size() < preparedVolumes_.size()) {
+        // A volume hidden or deleted since the last preparation: where this scene's pipelines are not
+        // made (its volume list is new: 0.4-1 s of compiling on lavapipe) but those of the list with
+        // the missing volumes as dark stand-ins are (the list of before), the stand-ins: the same
+        // image. The next preparation at rest makes this scene's, and the frames after it render it.
         const Result<bool> ready = renderer.hasPipelines(shown, request);
         if (ready && !ready.value()) {
-            auto standIns = frameFor(plan, HiddenAs::StandIns);
-            const Result<bool> standInsReady = renderer.hasPipelines(standIns.first, standIns.second);
-            if (standInsReady && standInsReady.value()) shown = std::move(standIns.first);
+            std::optional<Scene> standIns = withStandIns(shown, preparedVolumes_);
+            if (standIns) {
+                const Result<bool> standInsReady = renderer.hasPipelines(*standIns, request);
+                if (standInsReady && standInsReady.value()) shown = std::move(*standIns);
+            }
         }
     }
     Result<gpu::GpuRender> out = renderer.renderOnDevice(shown, request);

@@ -139,11 +139,11 @@ private:
     };
     bool prepareAtRest_ = false;
     PreparedKey prepared_;
-    std::pair<Scene, RenderRequest> frameFor(const ViewPlan& plan, HiddenAs hidden = HiddenAs::Removed) const;
-    // The hidden volumes the last preparation made pipelines for: after a hide or show
-    // since, a frame whose pipelines are not made renders the stand-ins if theirs are (view.h
-    // HiddenAs::StandIns): the same image, without compiling on that frame.
-    std::vector<bool> preparedHidden_;
+    std::pair<Scene, RenderRequest> frameFor(const ViewPlan& plan) const;
+    // The volumes of the scene the last preparation made pipelines for: after a hide or a delete since,
+    // a frame whose pipelines are not made renders the missing volumes as dark stand-ins if the
+    // pipelines for that list are (view.h withStandIns): the same image, without compiling on that frame.
+    std::vector<Volume> preparedVolumes_;
     bool measureFrame_ = false;  // the last frame rendered a steady coarse plan: frameMs times it
     std::optional<gpu::GpuRender> last_;
     Accumulation accumulation_;

@@ -115,16 +115,8 @@ std::vector<std::array<glm::vec3, 2>> volumeWireframe(const Volume& v) {
     return lines;
 }
 
-Scene visibleScene(const Scene& scene, HiddenAs hidden) {
+Scene visibleScene(const Scene& scene) {
     Scene s = scene;
-    if (hidden == HiddenAs::StandIns) {
-        for (Volume& v : s.volumes) {
-            if (!v.hidden) continue;
-            v.hidden = false;
-            v.medium.scattering = v.medium.absorption = v.medium.emission = glm::vec3(0.0f);
-            v.keys.clear();  // a keyed medium would light it again
-        }
-    }
     dropHidden(s.volumes);
     dropHidden(s.lights);
     dropHidden(s.geometry);
@@ -132,10 +124,37 @@ Scene visibleScene(const Scene& scene, HiddenAs hidden) {
     return s;
 }
 
-std::vector<bool> hiddenVolumes(const Scene& scene) {
-    std::vector<bool> h;
-    for (const Volume& v : scene.volumes) h.push_back(v.hidden);
-    return h;
+namespace {
+
+// Whether a and b specialize pipelines alike: the same kind, and for the box kinds the same shape and
+// whether a height falloff (gpu: SPEC_VOLUME_LIST, SPEC_SHAPE_LIST).
+bool sameKind(const Volume& a, const Volume& b) {
+    if (a.type != b.type) return false;
+    if (a.type == VolumeType::Height) return a.profile == b.profile;
+    if (isLocalShape(a.type)) return (a.height_falloff > 0.0f) == (b.height_falloff > 0.0f);
+    return true;
+}
+
+}  // namespace
+
+std::optional<Scene> withStandIns(const Scene& shown, const std::vector<Volume>& before) {
+    if (shown.volumes.size() >= before.size()) return std::nullopt;  // nothing missing
+    Scene s = shown;
+    s.volumes.clear();
+    size_t next = 0;  // shown's next volume
+    for (const Volume& was : before) {
+        if (next < shown.volumes.size() && sameKind(shown.volumes[next], was)) {
+            s.volumes.push_back(shown.volumes[next++]);
+            continue;
+        }
+        Volume dark = was;
+        dark.medium.scattering = dark.medium.absorption = dark.medium.emission = glm::vec3(0.0f);
+        dark.keys.clear();  // a keyed medium would light it again
+        dark.hidden = false;
+        s.volumes.push_back(std::move(dark));
+    }
+    if (next < shown.volumes.size()) return std::nullopt;
+    return s;
 }
 
 Scene withoutViewState(Scene scene) {

@@ -16,21 +16,20 @@
 
 namespace brume::editor {
 
-// How visibleScene treats hidden volumes (hidden lights, geometry and influencers are always left out).
-enum class HiddenAs {
-    Removed,   // left out: what the viewport shows
-    StandIns,  // kept in the list, dark: it scatters, absorbs and emits nothing and has no keys. The
-               // same image as Removed (it adds exactly 0 everywhere), and the volume list of before
-               // the hide, so the renderer's pipelines for that list serve it: the editor renders the
-               // stand-ins after a hide or show until the pipelines of the scene without them are made
-               // (Editor::renderIfNeeded). A dark light would not help: lights of intensity 0 are
-               // culled like removed ones (core/light_reach.cpp).
-};
-
 // The scene without its hidden volumes, lights and geometry (what the viewport renders).
-Scene visibleScene(const Scene& scene, HiddenAs hidden = HiddenAs::Removed);
-// Which volumes are hidden, in list order.
-std::vector<bool> hiddenVolumes(const Scene& scene);
+Scene visibleScene(const Scene& scene);
+
+// `shown` with dark stand-ins for the volumes of `before` (an earlier shown scene's list) that it no
+// longer has, a volume hidden or deleted since: each stand-in is that volume as it was, scattering,
+// absorbing and emitting nothing, without keys, at its place in the list. It adds exactly 0, so the
+// image is `shown`'s; and it keeps the list of before (kinds, shapes, bounds), so the renderer's
+// pipelines for that list serve it, where `shown`'s new list would compile (0.4-1 s on lavapipe; the
+// editor asks GpuRenderer::hasPipelines). shown's volumes are matched to before's in order, by kind
+// (type, height profile, whether a height falloff); nullopt when they are not an ordered subset of
+// before's (a volume added or of another kind: no stand-ins can keep the list). Lights have no
+// stand-ins: a light of intensity 0 is culled like a removed one (core/light_reach.cpp).
+std::optional<Scene> withStandIns(const Scene& shown, const std::vector<Volume>& before);
+
 // The scene with every hidden flag cleared (what a file holds: hidden is not saved).
 Scene withoutViewState(Scene scene);
 
