@@ -228,6 +228,9 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             const double sleepStart = seconds();
             glfwWaitEventsTimeout(st.sleepSeconds);
             woken = seconds() - sleepStart < 0.9 * st.sleepSeconds;
+            // A frame's time is its work, not the sleep before it: the coarse scale adapts to the
+            // frame time (Interaction::measured), and a drag resumed after a pause must not shrink it.
+            frameStart = seconds();
         } else {
             glfwPollEvents();
         }
