@@ -260,8 +260,10 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
             offeredFor = editor.autosave().path();
             offerRecovery(editor, ui, o, now);
         }
-        // The last frame's time stands for the wait until the next tick (a render follows).
-        if (Result<void> r = editor.autosave().tick(editor.doc(), now, editor.frameMs / 1000.0); !r) editor.notify(r.error().message, now);
+        // The last frame's time stands for the wait until the next tick (a render follows), plus the
+        // longest sleep the loop may take before it (FramePacer).
+        if (Result<void> r = editor.autosave().tick(editor.doc(), now, editor.frameMs / 1000.0 + FramePacer::kIdleWaitSeconds); !r)
+            editor.notify(r.error().message, now);
         offeredFor = editor.autosave().path();  // where a Save As moved it: our own file
         int w = 0, h = 0;
         glfwGetFramebufferSize(presenter.window(), &w, &h);
