@@ -332,7 +332,9 @@ int editorLoop(const Options& o, Editor& editor, Presenter& presenter, gpu::GpuR
         activity.rendered = editor.renders() != rendersBefore;
         const bool scriptLeft = script.next < script.lines.size();
         const double after = seconds();
-        activity.scriptStepDue = scriptLeft && after >= script.resumeAt;
+        // A `tradeoff wait` holds the script while the job runs: its progress paces the loop then.
+        const bool scriptHeld = editor.waitUntil && editor.qualityTool.job.running();
+        activity.scriptStepDue = scriptLeft && after >= script.resumeAt && !scriptHeld;
         activity.scriptWaitLeft = scriptLeft && after < script.resumeAt ? script.resumeAt - after : -1.0;
         activity.playing = editor.sceneTime().playing() && sceneScrolls(editor.doc().scene());
         activity.jobRunning = editor.qualityTool.job.running();
