@@ -600,16 +600,12 @@ bool GpuRenderer::State::hasCulledPipelines(const FramePasses& passes, const Fra
     return true;
 }
 
-bool GpuRenderer::State::hasPipelines(const FramePasses& passes, const FrameKeys& frameKeys, bool fallbacks) const {
-    const FrameKeys fallback = frameKeys.fallbacks();
-    // The culled passes all under one key or all under the other (takeFallbacks).
-    if (!hasCulledPipelines(passes, frameKeys) && !(fallbacks && hasCulledPipelines(passes, fallback))) return false;
+bool GpuRenderer::State::hasPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const {
     for (const PassDecl& p : kPasses) {
         if (p.record == Record::Geometry) {
-            if (passes.records(p) && !geometry.has(frameKeys.surfaceSpec, passes.variant.shapes, passes.spheres) &&
-                !(fallbacks && geometry.has(fallback.surfaceSpec, passes.variant.shapes, passes.spheres)))
+            if (passes.records(p) && !geometry.has(frameKeys.surfaceSpec, passes.variant.shapes, passes.spheres))
                 return false;
-        } else if (!p.culledVolumes && passes.dispatches(p) &&
+        } else if (passes.dispatches(p) &&
                    !pipelines.has(variantShaderName(p.shader, p.variant, passes.variant), frameKeys.of(p))) {
             return false;
         }
@@ -617,12 +613,14 @@ bool GpuRenderer::State::hasPipelines(const FramePasses& passes, const FrameKeys
     return true;
 }
 
-void GpuRenderer::State::takeFallbacks(const FramePasses& passes) {
-    const FrameKeys fallback = keys.fallbacks();
-    if (!hasCulledPipelines(passes, keys) && hasCulledPipelines(passes, fallback)) keys.froxelFallback = true;
-    if (!geometry.has(keys.surfaceSpec, passes.variant.shapes, passes.spheres) &&
+FrameKeys GpuRenderer::State::withFallbacks(const FramePasses& passes, const FrameKeys& frameKeys) const {
+    FrameKeys k = frameKeys;
+    const FrameKeys fallback = frameKeys.fallbacks();
+    if (!hasCulledPipelines(passes, frameKeys) && hasCulledPipelines(passes, fallback)) k.froxelFallback = true;
+    if (!geometry.has(frameKeys.surfaceSpec, passes.variant.shapes, passes.spheres) &&
         geometry.has(fallback.surfaceSpec, passes.variant.shapes, passes.spheres))
-        keys.surfaceSpec = fallback.surfaceSpec;
+        k.surfaceSpec = fallback.surfaceSpec;
+    return k;
 }
 
 Result<void> GpuRenderer::State::recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar,

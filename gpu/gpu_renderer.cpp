@@ -427,26 +427,49 @@ Result<bool> GpuRenderer::preparePipelines(const Scene& scene, const RenderReque
     return preparePipelines(std::span(&one, 1));
 }
 
+namespace {
+
+// A planned render and its shader variants (what preparePipelines and hasPipelines look up).
+struct PlannedRender {
+    FramePlan plan;
+    VariantKey variant;
+    // The passes of its frames: the temporal pass in motion or at rest is not known before the frame.
+    std::array<FramePasses, 2> passes(const RenderRequest& request) const {
+        std::array<FramePasses, 2> out;
+        for (bool rest : {false, true}) {
+            FramePasses& f = out[rest ? 1 : 0];
+            f = FramePasses{variant, request.debugView != shd::DEBUG_VIEW_FINAL, false, false, plan.mesh.sphereVertices > 0};
+            f.variant.temporalRest = rest;
+        }
+        return out;
+    }
+};
+
+Result<PlannedRender> planRender(const Scene& scene, const RenderRequest& request, const Device& device,
+                                 bool froxelRegions) {
+    Result<FramePlan> planned = planFrames(scene, request, device, froxelRegions);
+    if (!planned) return planned.error();
+    Result<VariantKey> variant = variantOf(planned.value().cs);
+    if (!variant) return variant.error();
+    return PlannedRender{std::move(planned.value()), variant.value()};
+}
+
+}  // namespace
+
 Result<bool> GpuRenderer::preparePipelines(std::span<const std::pair<Scene, RenderRequest>> renders) {
     // Every plan first: a scene that cannot be planned requests nothing.
-    std::vector<std::pair<FramePlan, VariantKey>> plans;
+    std::vector<PlannedRender> plans;
     for (const auto& [scene, request] : renders) {
-        Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
+        Result<PlannedRender> planned = planRender(scene, request, *s_->device, s_->froxelRegions);
         if (!planned) return planned.error();
-        Result<VariantKey> variant = variantOf(planned.value().cs);
-        if (!variant) return variant.error();
-        plans.emplace_back(std::move(planned.value()), variant.value());
+        plans.push_back(std::move(planned.value()));
     }
     PipelineBatch batch;
     for (size_t i = 0; i < plans.size(); ++i) {
         const RenderRequest& request = renders[i].second;
-        const auto& [plan, variant] = plans[i];
-        for (bool rest : {false, true}) {  // the temporal pass in motion or at rest: not known before the frame
-            FramePasses passes{variant, request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
-                               plan.mesh.sphereVertices > 0};
-            passes.variant.temporalRest = rest;
-            s_->requestPipelines(passes, plan.keys, batch);
-            if (request.pipelineFallbacks) s_->requestPipelines(passes, plan.keys.fallbacks(), batch);
+        for (const FramePasses& passes : plans[i].passes(request)) {
+            s_->requestPipelines(passes, plans[i].plan.keys, batch);
+            if (request.pipelineFallbacks) s_->requestPipelines(passes, plans[i].plan.keys.fallbacks(), batch);
         }
     }
     const bool missing = batch.size() > 0;
@@ -455,17 +478,11 @@ Result<bool> GpuRenderer::preparePipelines(std::span<const std::pair<Scene, Rend
 }
 
 Result<bool> GpuRenderer::hasPipelines(const Scene& scene, const RenderRequest& request) const {
-    Result<FramePlan> planned = planFrames(scene, request, *s_->device, s_->froxelRegions);
+    Result<PlannedRender> planned = planRender(scene, request, *s_->device, s_->froxelRegions);
     if (!planned) return planned.error();
-    const FramePlan& plan = planned.value();
-    Result<VariantKey> variant = variantOf(plan.cs);
-    if (!variant) return variant.error();
-    for (bool rest : {false, true}) {
-        FramePasses passes{variant.value(), request.debugView != shd::DEBUG_VIEW_FINAL, false, false,
-                           plan.mesh.sphereVertices > 0};
-        passes.variant.temporalRest = rest;
-        if (!s_->hasPipelines(passes, plan.keys, request.pipelineFallbacks)) return false;
-    }
+    const FrameKeys& keys = planned.value().plan.keys;
+    for (const FramePasses& passes : planned.value().passes(request))
+        if (!s_->hasPipelines(passes, request.pipelineFallbacks ? s_->withFallbacks(passes, keys) : keys)) return false;
     return true;
 }
 

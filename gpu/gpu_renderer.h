@@ -71,7 +71,8 @@ public:
     // Whether a render of (scene, request) would find every pipeline it needs made, with the
     // fallbacks RenderRequest::pipelineFallbacks lets it take (for its temporal pass in motion and at
     // rest): a render that would compile (10-250 ms a pipeline on lavapipe) answers false. Compiles
-    // nothing. The editor asks it for a stand-in scene after a hide (app/editor/view.h HiddenAs).
+    // nothing. The editor asks it before it renders stand-ins for a volume hidden or deleted
+    // (app/editor/view.h withStandIns).
     Result<bool> hasPipelines(const Scene& scene, const RenderRequest& request) const;
     OutputImage outputImage() const;
     const Device& device() const;

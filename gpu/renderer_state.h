@@ -114,13 +114,14 @@ struct GpuRenderer::State {
     void requestPipelines(const FramePasses& passes, const FrameKeys& frameKeys, PipelineBatch& batch);
     // Whether the pipelines such a frame's culled passes (PassDecl::culledVolumes) use with these keys are made.
     bool hasCulledPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const;
-    // Every pipeline a frame of `passes` records is made, under frameKeys or, with fallbacks, where
-    // takeFallbacks would take them (GpuRenderer::hasPipelines).
-    bool hasPipelines(const FramePasses& passes, const FrameKeys& frameKeys, bool fallbacks) const;
-    // RenderRequest::pipelineFallbacks: `keys` take each fallback (FrameKeys::fallbacks: the culled
-    // froxel passes', all or none; the geometry pass's) whose own pipelines are missing where the
-    // fallback's are made: the same image, no compile in this call.
-    void takeFallbacks(const FramePasses& passes);
+    // Whether every pipeline a frame of `passes` records with these keys is made.
+    bool hasPipelines(const FramePasses& passes, const FrameKeys& frameKeys) const;
+    // RenderRequest::pipelineFallbacks: frameKeys with each fallback taken (FrameKeys::fallbacks: the
+    // culled froxel passes', all or none; the geometry pass's) whose own pipelines are missing where
+    // the fallback's are made: the same image, no compile. The one rule for the render
+    // (takeFallbacks) and for GpuRenderer::hasPipelines.
+    FrameKeys withFallbacks(const FramePasses& passes, const FrameKeys& frameKeys) const;
+    void takeFallbacks(const FramePasses& passes) { keys = withFallbacks(passes, keys); }
     Result<void> recordFrame(const GeometryMesh& mesh, glm::vec3 ambient, float cameraFar, bool readBackVolumes,
                              int historyWriteIndex);
     // historyWriteIndex: the side holding this frame's resolved S and sigma_t (read back for sourceImage

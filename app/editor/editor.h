@@ -18,7 +18,6 @@
 #include "gpu/gpu_renderer.h"
 #include "quality_job.h"
 #include "scene_time.h"
-#include "view.h"
 
 namespace brume::editor {
 
